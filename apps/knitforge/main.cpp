@@ -1,19 +1,55 @@
-// knitforge command-line program: parses options, calls the library, writes files.
+// knitforge command-line program: parses options, calls the library, writes
+// files. Exit codes: 0 success, 1 input error or failed check, 2 usage error.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "cli_common.h"
 #include "knitforge/util/errors.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"knitforge: computational design of 3D and 4D knitwear"};
+  using namespace knitforge;
+  CLI::App app{
+      "knitforge: computational design of 3D and 4D knitwear.\n"
+      "All lengths are millimetres. Run 'knitforge <command> --help' for a command's options."};
   app.set_version_flag("--version", "knitforge 0.1.0");
   app.require_subcommand(1);
+  app.fallthrough(false);
+
+  cli::Action action;
+  cli::add_shape_command(app, action);
+  cli::add_sample_map_command(app, action);
+  cli::add_check_command(app, action);
+  cli::add_relax_command(app, action);
+  cli::add_map_command(app, action);
+  cli::add_yarn_command(app, action);
+
   try {
     app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    std::fprintf(stderr, "knitforge: usage error: %s\n", e.what());
+    std::fprintf(stderr, "Run 'knitforge --help' for the commands and their options.\n");
+    return 2;
   }
-  return 0;
+
+  try {
+    return action ? action() : 0;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "knitforge: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "knitforge: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "knitforge: internal error: %s\n", e.what());
+    return 1;
+  }
 }

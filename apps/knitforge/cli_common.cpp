@@ -1,0 +1,109 @@
+#include "cli_common.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/core.h>
+
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/knitting_map_image.h"
+#include "knitforge/io/io_detail.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/ply_format.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge::cli {
+
+KnitParams parse_stitch_size(const std::string& text) {
+  const auto x = text.find_first_of("xX");
+  KnitParams p;
+  bool ok = x != std::string::npos;
+  if (ok) {
+    try {
+      size_t n1 = 0, n2 = 0;
+      p.stitch_width = std::stod(text.substr(0, x), &n1);
+      p.stitch_height = std::stod(text.substr(x + 1), &n2);
+      ok = n1 == x && n2 == text.size() - x - 1;
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || !std::isfinite(p.stitch_width) || !std::isfinite(p.stitch_height) ||
+      p.stitch_width <= 0 || p.stitch_height <= 0) {
+    throw InvalidInput(fmt::format(
+        "--stitch '{}': expected WIDTHxHEIGHT in millimetres with positive numbers, e.g. 3.5x2.8",
+        text));
+  }
+  return p;
+}
+
+double unit_scale(const std::string& units) {
+  if (units == "mm") return 1.0;
+  if (units == "cm") return 10.0;
+  if (units == "m") return 1000.0;
+  throw InvalidInput(fmt::format("--units '{}': expected mm, cm or m", units));
+}
+
+std::string extension(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+StitchInput load_stitch_input(const std::string& path) {
+  StitchInput in;
+  const std::string ext = extension(path);
+  if (ext == ".csv") {
+    in.is_map = true;
+    in.map = read_knitting_map_csv(path);
+  } else if (ext == ".ply") {
+    in.mesh = read_stitch_mesh_ply(path);
+  } else {
+    throw InvalidInput(fmt::format(
+        "{}: expected a knitting map (.csv) or a stitch mesh (.ply with stitch properties)", path));
+  }
+  return in;
+}
+
+void write_map_by_extension(const std::string& path, const KnittingMap& map) {
+  const std::string ext = extension(path);
+  if (ext == ".csv") {
+    write_knitting_map_csv(path, map);
+  } else if (ext == ".png") {
+    write_knitting_map_png(path, map);
+  } else if (ext == ".svg") {
+    write_knitting_map_svg(path, map);
+  } else {
+    throw InvalidInput(fmt::format("{}: a knitting map is written as .csv, .png or .svg", path));
+  }
+}
+
+TriMesh load_surface(const std::string& path, const std::string& units) {
+  const double s = unit_scale(units);
+  TriMesh mesh = read_mesh(path);
+  if (s != 1.0) {
+    for (Vec3& v : mesh.vertices) v *= s;
+  }
+  return mesh;
+}
+
+CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value) {
+  return cmd.add_option("--stitch", value, "Stitch size WIDTHxHEIGHT in mm (default 3.5x2.8)");
+}
+
+bool is_stitch_mesh_ply(const std::string& path) {
+  const std::string data = io_detail::load_file(path);
+  const ply_detail::PlyHeader header = ply_detail::read_ply_header(path, data);
+  const int face = header.find("face");
+  return face >= 0 && header.elements[face].find("type") >= 0;
+}
+
+void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }
+
+}  // namespace knitforge::cli

@@ -1,0 +1,68 @@
+#pragma once
+// Helpers shared by the subcommands: option parsing of physical quantities,
+// loading inputs by extension, writing outputs by extension, messages.
+// No algorithms here: everything of substance is in the library.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "knitforge/core/knit_params.h"
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
+#include "knitforge/geometry/tri_mesh.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge::cli {
+
+/// What a subcommand runs after parsing; returns the process exit code.
+using Action = std::function<int()>;
+
+/// Registers each subcommand on `app`; `action` receives the runner of the
+/// subcommand the user chose.
+void add_shape_command(CLI::App& app, Action& action);
+void add_sample_map_command(CLI::App& app, Action& action);
+void add_check_command(CLI::App& app, Action& action);
+void add_relax_command(CLI::App& app, Action& action);
+void add_map_command(CLI::App& app, Action& action);
+void add_yarn_command(CLI::App& app, Action& action);
+
+/// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
+/// \throw InvalidInput naming the option when malformed or not positive.
+KnitParams parse_stitch_size(const std::string& text);
+
+/// Scale factor from a unit name ("mm", "cm", "m") to millimetres.
+double unit_scale(const std::string& units);
+
+/// Lower-case extension of a path including the dot (".csv"), "" if none.
+std::string extension(const std::string& path);
+
+/// A knitting map or a stitch mesh, loaded from a .csv (map) or a .ply
+/// (stitch mesh) file.
+struct StitchInput {
+  bool is_map = false;
+  KnittingMap map;
+  StitchMesh mesh;
+};
+StitchInput load_stitch_input(const std::string& path);
+
+/// Writes a knitting map in the format given by the extension of `path`
+/// (.csv, .png, .svg).
+void write_map_by_extension(const std::string& path, const KnittingMap& map);
+
+/// True when `path` is a PLY file whose faces carry the stitch properties
+/// (a stitch mesh) rather than a plain triangle mesh.
+bool is_stitch_mesh_ply(const std::string& path);
+
+/// Reads a triangle mesh and scales it to millimetres.
+TriMesh load_surface(const std::string& path, const std::string& units);
+
+/// Adds the standard "--stitch WxH" option.
+CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);
+
+/// One line on stderr: "knitforge: <message>" (progress and notes).
+void note(const std::string& message);
+
+}  // namespace knitforge::cli
