@@ -19,7 +19,7 @@ using namespace knitforge;
 
 namespace {
 
-struct Run {
+struct CliRun {
   int code = -1;
   std::string out, err;
 };
@@ -41,11 +41,11 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Run run(const std::string& args) {
+  CliRun run(const std::string& args) {
     const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
     const std::string cmd = std::string(KNITFORGE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
-    Run r;
+    CliRun r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurp(out);
     r.err = slurp(err);
@@ -59,7 +59,7 @@ class Cli : public ::testing::Test {
 }  // namespace
 
 TEST_F(Cli, HelpAndVersion) {
-  Run r = run("--help");
+  CliRun r = run("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* c : {"shape", "sample-map", "check", "relax", "map", "yarn"}) {
     EXPECT_NE(r.out.find(c), std::string::npos) << c;
@@ -72,13 +72,13 @@ TEST_F(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run("").code, 2);
   EXPECT_EQ(run("no-such-command").code, 2);
   EXPECT_EQ(run("relax").code, 2);  // missing required arguments
-  Run r = run("relax map.csv -o x.ply --iterations minus");
+  CliRun r = run("relax map.csv -o x.ply --iterations minus");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("usage error"), std::string::npos);
 }
 
 TEST_F(Cli, InputErrorsExitOneWithOneLine) {
-  Run r = run("relax " + path("missing.csv") + " -o " + path("out.ply"));
+  CliRun r = run("relax " + path("missing.csv") + " -o " + path("out.ply"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("missing.csv"), std::string::npos);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -96,7 +96,7 @@ TEST_F(Cli, InputErrorsExitOneWithOneLine) {
 }
 
 TEST_F(Cli, ShapeWritesARealMesh) {
-  Run r = run("shape hemisphere --edge 6 -o " + path("h.obj"));
+  CliRun r = run("shape hemisphere --edge 6 -o " + path("h.obj"));
   ASSERT_EQ(r.code, 0) << r.err;
   const TriMesh m = read_mesh(path("h.obj"));
   EXPECT_GT(m.num_faces(), 500);
@@ -110,10 +110,10 @@ TEST_F(Cli, MapRelaxMapRoundTripAndCheck) {
   ASSERT_EQ(run("sample-map cup -o " + path("cup.csv") + " -o " + path("cup.png") + " -o " + path("cup.svg")).code, 0);
   EXPECT_GT(fs::file_size(path("cup.png")), 100u);
   EXPECT_NE(slurp(path("cup.svg")).find("<svg"), std::string::npos);
-  Run c = run("check " + path("cup.csv"));
+  CliRun c = run("check " + path("cup.csv"));
   EXPECT_EQ(c.code, 0) << c.out;
 
-  Run r = run("relax " + path("cup.csv") + " --stitch 3.5x2.8 -o " + path("cup.ply"));
+  CliRun r = run("relax " + path("cup.csv") + " --stitch 3.5x2.8 -o " + path("cup.ply"));
   ASSERT_EQ(r.code, 0) << r.err;
   const StitchMesh mesh = read_stitch_mesh_ply(path("cup.ply"));
   EXPECT_TRUE(check_knittability(mesh).ok());
@@ -126,11 +126,11 @@ TEST_F(Cli, MapRelaxMapRoundTripAndCheck) {
   EXPECT_EQ(read_knitting_map_csv(path("back.csv")), read_knitting_map_csv(path("cup.csv")));
   EXPECT_EQ(slurp(path("back.csv")), slurp(path("cup.csv")));
 
-  Run j = run("check " + path("cup.ply") + " --json");
+  CliRun j = run("check " + path("cup.ply") + " --json");
   EXPECT_EQ(j.code, 0);
   EXPECT_NE(j.out.find("\"knittable\": true"), std::string::npos) << j.out;
 
-  Run y = run("yarn " + path("cup.ply") + " --stitch 3.5x2.8 -o " + path("yarn.obj"));
+  CliRun y = run("yarn " + path("cup.ply") + " --stitch 3.5x2.8 -o " + path("yarn.obj"));
   ASSERT_EQ(y.code, 0) << y.err;
   const std::string obj = slurp(path("yarn.obj"));
   EXPECT_NE(obj.find("o yarn_0"), std::string::npos);
@@ -139,14 +139,14 @@ TEST_F(Cli, MapRelaxMapRoundTripAndCheck) {
 TEST_F(Cli, CheckFailsOnUnknittableMap) {
   // A short-row end on the boundary: the apex lies on the fabric edge.
   std::ofstream(path("edge.csv")) << "course,dir,0,1,2\n2,>,K,K,K\n1,<,L,K,K\n0,>,K,K,K\n";
-  Run r = run("check " + path("edge.csv"));
+  CliRun r = run("check " + path("edge.csv"));
   EXPECT_EQ(r.code, 1);
   EXPECT_FALSE(r.out.empty());
 }
 
 TEST_F(Cli, CheckSurface) {
   ASSERT_EQ(run("shape disk --edge 8 -o " + path("d.ply")).code, 0);
-  Run r = run("check " + path("d.ply"));
+  CliRun r = run("check " + path("d.ply"));
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   // Non-manifold: three triangles on one edge.
   std::ofstream(path("nm.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
