@@ -25,6 +25,13 @@ Halfedges build_halfedges(int num_vertices, std::span<const int> face_start,
     throw InvalidInput("build_halfedges: face_start must begin with 0 and end with the number of "
                        "face vertices");
   }
+  for (size_t f = 0; f + 1 < face_start.size(); ++f) {
+    if (face_start[f + 1] < face_start[f]) {
+      throw InvalidInput(fmt::format("build_halfedges: face_start must not decrease (face {} starts at {}, "
+                                     "face {} at {})",
+                                     f, face_start[f], f + 1, face_start[f + 1]));
+    }
+  }
   Halfedges m;
   const int nf = static_cast<int>(face_start.size()) - 1;
   const int nh = static_cast<int>(face_vertices.size());

@@ -4,6 +4,7 @@
 /// All lengths are millimetres unless a name says otherwise.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace knitforge {
 

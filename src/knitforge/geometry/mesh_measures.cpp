@@ -1,0 +1,149 @@
+#include "knitforge/geometry/mesh_measures.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+
+Vec3 triangle_area_vector(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return (b - a).cross(c - a);
+}
+
+double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * triangle_area_vector(a, b, c).norm();
+}
+
+Vec3 face_normal(const TriMesh& mesh, int f) {
+  const auto& t = mesh.faces[f];
+  const Vec3 n = triangle_area_vector(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+  const double len = n.norm();
+  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+std::vector<Vec3> face_normals(const TriMesh& mesh) {
+  std::vector<Vec3> out(mesh.faces.size());
+  for (int f = 0; f < mesh.num_faces(); ++f) out[f] = face_normal(mesh, f);
+  return out;
+}
+
+std::vector<double> face_areas(const TriMesh& mesh) {
+  std::vector<double> out(mesh.faces.size());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const auto& t = mesh.faces[f];
+    out[f] = triangle_area(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+  }
+  return out;
+}
+
+double total_area(const TriMesh& mesh) {
+  double sum = 0.0;
+  for (double a : face_areas(mesh)) sum += a;
+  return sum;
+}
+
+std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
+  std::vector<Vec3> out(mesh.vertices.size(), Vec3::Zero());
+  for (const auto& t : mesh.faces) {
+    const Vec3 n = triangle_area_vector(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    for (int v : t) out[v] += n;
+  }
+  for (Vec3& n : out) {
+    const double len = n.norm();
+    if (len > 0.0) n /= len;
+  }
+  return out;
+}
+
+BoundingBox bounding_box(const TriMesh& mesh) {
+  if (mesh.vertices.empty()) throw InvalidInput("bounding_box: the mesh has no vertices");
+  BoundingBox box{mesh.vertices[0], mesh.vertices[0]};
+  for (const Vec3& p : mesh.vertices) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+std::vector<double> edge_lengths(const TriMesh& mesh) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * mesh.faces.size());
+  for (const auto& t : mesh.faces) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> out;
+  out.reserve(edges.size());
+  for (const auto& [a, b] : edges) out.push_back((mesh.vertices[a] - mesh.vertices[b]).norm());
+  return out;
+}
+
+EdgeLengthStats edge_length_stats(const TriMesh& mesh) {
+  const std::vector<double> lengths = edge_lengths(mesh);
+  EdgeLengthStats s;
+  if (lengths.empty()) return s;
+  s.count = static_cast<int>(lengths.size());
+  s.min = std::numeric_limits<double>::infinity();
+  s.max = 0.0;
+  double sum = 0.0;
+  for (double l : lengths) {
+    s.min = std::min(s.min, l);
+    s.max = std::max(s.max, l);
+    sum += l;
+  }
+  s.mean = sum / static_cast<double>(lengths.size());
+  return s;
+}
+
+Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 <= 0.0) return a;
+  const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+  return a + t * ab;
+}
+
+// Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the
+// triangle), with a fallback to the edges for degenerate triangles.
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double n2 = ab.cross(ac).squaredNorm();
+  if (!(n2 > 1e-24 * std::max(ab.squaredNorm(), ac.squaredNorm()) * std::max(ab.squaredNorm(), ac.squaredNorm()))) {
+    Vec3 best = closest_point_on_segment(p, a, b);
+    for (const Vec3& q : {closest_point_on_segment(p, b, c), closest_point_on_segment(p, c, a)}) {
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    }
+    return best;
+  }
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return (closest_point_on_triangle(p, a, b, c) - p).norm();
+}
+
+}  // namespace knitforge

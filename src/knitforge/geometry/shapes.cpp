@@ -1,0 +1,301 @@
+#include "knitforge/geometry/shapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "knitforge/geometry/isotropic_remesh.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kMaxFaces = 2e7;
+
+void check_size(std::string_view shape, std::string_view name, double value) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InvalidInput(fmt::format("{}: {} must be a positive, finite number, got {}", shape, name, value));
+  }
+}
+
+// Validates the edge length against the smallest dimension and the area.
+void check_edge(std::string_view shape, double edge, double smallest_dimension, double area) {
+  check_size(shape, "edge length", edge);
+  if (edge > 0.25 * smallest_dimension) {
+    throw InvalidInput(fmt::format("{}: edge length {} mm is too large for a shape of size {} mm; use at most {} mm",
+                                   shape, edge, smallest_dimension, 0.25 * smallest_dimension));
+  }
+  if (area / (0.433 * edge * edge) > kMaxFaces) {
+    throw InvalidInput(fmt::format("{}: edge length {} mm is too small (the mesh would have more than {:.0f} "
+                                   "million faces); use a larger edge length",
+                                   shape, edge, kMaxFaces / 1e6));
+  }
+}
+
+// A disk-like mesh of concentric rings: ring 0 is a single centre vertex,
+// ring k (1..K) has counts[k] vertices at angles 2π(j + offset_k)/counts[k].
+// point(k, phi) gives the position. Faces are counter-clockwise when the
+// parameter disk (k as radius, phi as angle) is seen from +z.
+TriMesh ring_mesh(int rings, const std::function<int(int)>& count,
+                  const std::function<Vec3(int, double)>& point) {
+  TriMesh m;
+  m.vertices.push_back(point(0, 0.0));
+  std::vector<int> start{0}, size{1};
+  std::vector<double> offset{0.0};
+  for (int k = 1; k <= rings; ++k) {
+    const int n = std::max(6, count(k));
+    start.push_back(m.num_vertices());
+    size.push_back(n);
+    offset.push_back(k % 2 ? 0.0 : 0.5);
+    for (int j = 0; j < n; ++j) m.vertices.push_back(point(k, 2.0 * kPi * (j + offset[k]) / n));
+  }
+  for (int j = 0; j < size[1]; ++j) m.faces.push_back({0, start[1] + j, start[1] + (j + 1) % size[1]});
+  for (int k = 1; k < rings; ++k) {
+    const int m_in = size[k], m_out = size[k + 1];
+    auto angle_in = [&](int i) { return (i + offset[k]) / m_in; };
+    auto angle_out = [&](int j) { return (j + offset[k + 1]) / m_out; };
+    // Start both rings at their vertex of smallest angle; march by angle.
+    int i = 0, j = 0;
+    while (i < m_in || j < m_out) {
+      const int a = start[k] + i % m_in, b = start[k + 1] + j % m_out;
+      const bool advance_outer = i >= m_in || (j < m_out && angle_out(j + 1) <= angle_in(i + 1));
+      if (advance_outer) {
+        m.faces.push_back({a, b, start[k + 1] + (j + 1) % m_out});
+        ++j;
+      } else {
+        m.faces.push_back({a, b, start[k] + (i + 1) % m_in});
+        ++i;
+      }
+    }
+  }
+  return m;
+}
+
+// A grid of nx x ny cells over [x0, x1] x [y0, y1] (parameters u, v) mapped
+// by `point`, with alternating diagonals. Corners are returned in `corners`.
+TriMesh grid_mesh(double x0, double x1, double y0, double y1, int nx, int ny,
+                  const std::function<Vec3(double, double)>& point, std::vector<int>& corners) {
+  TriMesh m;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double u = i == nx ? x1 : x0 + (x1 - x0) * i / nx;
+      const double v = j == ny ? y1 : y0 + (y1 - y0) * j / ny;
+      m.vertices.push_back(point(u, v));
+    }
+  }
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+      } else {
+        m.faces.push_back({a, b, d});
+        m.faces.push_back({b, c, d});
+      }
+    }
+  }
+  corners = {id(0, 0), id(nx, 0), id(nx, ny), id(0, ny)};
+  return m;
+}
+
+// Closest point of the boundary of [x0, x1] x [y0, y1] to (u, v).
+Vec2 rectangle_boundary_point(double u, double v, double x0, double x1, double y0, double y1) {
+  u = std::clamp(u, x0, x1);
+  v = std::clamp(v, y0, y1);
+  const double d[4] = {u - x0, x1 - u, v - y0, y1 - v};
+  const int k = static_cast<int>(std::min_element(d, d + 4) - d);
+  if (k == 0) u = x0;
+  if (k == 1) u = x1;
+  if (k == 2) v = y0;
+  if (k == 3) v = y1;
+  return {u, v};
+}
+
+int cells(double length, double edge) { return std::max(1, static_cast<int>(std::lround(length / edge))); }
+
+// Remeshes the initial mesh of a height field z = height(x, y) over a
+// rectangle, with the corners fixed.
+TriMesh height_field_rectangle(double x0, double x1, double y0, double y1, double edge, int iterations,
+                               const std::function<double(double, double)>& height) {
+  std::vector<int> corners;
+  TriMesh m = grid_mesh(x0, x1, y0, y1, cells(x1 - x0, edge), cells(y1 - y0, edge),
+                        [&](double x, double y) { return Vec3(x, y, height(x, y)); }, corners);
+  RemeshOptions o;
+  o.target_edge_length = edge;
+  o.iterations = iterations;
+  o.fixed_vertices = corners;
+  o.boundary_corner_angle_deg = 0.0;
+  o.project = [=](const Vec3& p) {
+    const double x = std::clamp(p.x(), x0, x1), y = std::clamp(p.y(), y0, y1);
+    return Vec3(x, y, height(x, y));
+  };
+  o.project_boundary = [=](const Vec3& p) {
+    const Vec2 q = rectangle_boundary_point(p.x(), p.y(), x0, x1, y0, y1);
+    return Vec3(q.x(), q.y(), height(q.x(), q.y()));
+  };
+  return isotropic_remesh(m, o);
+}
+
+// Remeshes the initial mesh of a height field z = height(x, y) over the disk
+// of radius r.
+TriMesh height_field_disk(double r, double edge, int iterations,
+                          const std::function<double(double, double)>& height) {
+  const int rings = cells(r, edge);
+  TriMesh m = ring_mesh(
+      rings, [&](int k) { return static_cast<int>(std::lround(2.0 * kPi * r * k / rings / edge)); },
+      [&](int k, double phi) {
+        const double rho = k == rings ? r : r * k / rings;
+        const double x = rho * std::cos(phi), y = rho * std::sin(phi);
+        return Vec3(x, y, height(x, y));
+      });
+  RemeshOptions o;
+  o.target_edge_length = edge;
+  o.iterations = iterations;
+  o.boundary_corner_angle_deg = 0.0;
+  o.project = [=](const Vec3& p) {
+    double x = p.x(), y = p.y();
+    const double rho = std::hypot(x, y);
+    if (rho > r) {
+      x *= r / rho;
+      y *= r / rho;
+    }
+    return Vec3(x, y, height(x, y));
+  };
+  o.project_boundary = [=](const Vec3& p) {
+    const double rho = std::hypot(p.x(), p.y());
+    const double x = rho > 0.0 ? r * p.x() / rho : r, y = rho > 0.0 ? r * p.y() / rho : 0.0;
+    return Vec3(x, y, height(x, y));
+  };
+  return isotropic_remesh(m, o);
+}
+
+}  // namespace
+
+double triple_peak_height(double x, double y) {
+  constexpr double scale = 50.0, w = 1.2, sigma2 = 0.1;
+  const double u = x / scale, v = y / scale;
+  double f = 0.0;
+  for (double cx : {0.0, 1.0, -1.0}) f += std::exp(-((u - cx) * (u - cx) + v * v) / sigma2);
+  return scale * w * f;
+}
+
+double monkey_saddle_height(double x, double y) {
+  constexpr double scale = 50.0;
+  const double u = x / scale, v = y / scale;
+  return scale * (u * u * u - 3.0 * u * v * v);
+}
+
+TriMesh hemisphere(double radius, double edge_length) {
+  check_size("hemisphere", "radius", radius);
+  check_edge("hemisphere", edge_length, radius, 2.0 * kPi * radius * radius);
+  const double r = radius;
+  const int rings = cells(0.5 * kPi * r, edge_length);
+  auto theta = [&](int k) { return k == rings ? 0.5 * kPi : 0.5 * kPi * k / rings; };
+  TriMesh m = ring_mesh(
+      rings,
+      [&](int k) { return static_cast<int>(std::lround(2.0 * kPi * r * std::sin(theta(k)) / edge_length)); },
+      [&](int k, double phi) {
+        const double t = theta(k);
+        const double s = k == rings ? 1.0 : std::sin(t);
+        return Vec3(r * s * std::cos(phi), r * s * std::sin(phi), k == rings ? 0.0 : r * std::cos(t));
+      });
+  RemeshOptions o;
+  o.target_edge_length = edge_length;
+  o.iterations = 4;
+  o.boundary_corner_angle_deg = 0.0;
+  o.project = [r](const Vec3& p) {
+    Vec3 q(p.x(), p.y(), std::max(p.z(), 0.0));
+    const double n = q.norm();
+    return n > 0.0 ? Vec3(r * q / n) : Vec3(0.0, 0.0, r);
+  };
+  o.project_boundary = [r](const Vec3& p) {
+    const double rho = std::hypot(p.x(), p.y());
+    return rho > 0.0 ? Vec3(r * p.x() / rho, r * p.y() / rho, 0.0) : Vec3(r, 0.0, 0.0);
+  };
+  return isotropic_remesh(m, o);
+}
+
+TriMesh triple_peak(double edge_length) {
+  check_edge("triple-peak", edge_length, 100.0, 150.0 * 100.0 * 1.5);
+  return height_field_rectangle(-75.0, 75.0, -50.0, 50.0, edge_length, 10, triple_peak_height);
+}
+
+TriMesh monkey_saddle(double edge_length) {
+  check_edge("monkey-saddle", edge_length, 100.0, kPi * 50.0 * 50.0 * 2.0);
+  return height_field_disk(50.0, edge_length, 10, monkey_saddle_height);
+}
+
+TriMesh flat_disk(double radius, double edge_length) {
+  check_size("disk", "radius", radius);
+  check_edge("disk", edge_length, radius, kPi * radius * radius);
+  return height_field_disk(radius, edge_length, 4, [](double, double) { return 0.0; });
+}
+
+TriMesh rectangle(double width, double height, double edge_length) {
+  check_size("rectangle", "width", width);
+  check_size("rectangle", "height", height);
+  check_edge("rectangle", edge_length, std::min(width, height), width * height);
+  return height_field_rectangle(-0.5 * width, 0.5 * width, -0.5 * height, 0.5 * height, edge_length, 6,
+                                [](double, double) { return 0.0; });
+}
+
+TriMesh cylinder_patch(double radius, double angle, double height, double edge_length) {
+  check_size("cylinder-patch", "radius", radius);
+  check_size("cylinder-patch", "angle", angle);
+  check_size("cylinder-patch", "height", height);
+  const double r = radius, a = angle, h = height;
+  const double arc = r * a;
+  check_edge("cylinder-patch", edge_length, std::min(arc, h), arc * h);
+  if (r * (2.0 * kPi - a) < edge_length) {
+    throw InvalidInput(fmt::format(
+        "cylinder-patch: angle {} rad leaves a gap of {} mm, less than the edge length {} mm; the patch "
+        "must stay open (use a smaller angle)",
+        a, r * (2.0 * kPi - a), edge_length));
+  }
+  // Parameters: u = arc length in [-arc/2, arc/2], v = z in [0, h].
+  auto point = [r](double u, double v) { return Vec3(r * std::cos(u / r), r * std::sin(u / r), v); };
+  auto params = [r](const Vec3& p) { return Vec2(r * std::atan2(p.y(), p.x()), p.z()); };
+  std::vector<int> corners;
+  TriMesh m = grid_mesh(-0.5 * arc, 0.5 * arc, 0.0, h, cells(arc, edge_length), cells(h, edge_length), point,
+                        corners);
+  RemeshOptions o;
+  o.target_edge_length = edge_length;
+  o.iterations = 6;
+  o.fixed_vertices = corners;
+  o.boundary_corner_angle_deg = 0.0;
+  o.project = [=](const Vec3& p) {
+    const Vec2 q = params(p);
+    return point(std::clamp(q.x(), -0.5 * arc, 0.5 * arc), std::clamp(q.y(), 0.0, h));
+  };
+  o.project_boundary = [=](const Vec3& p) {
+    const Vec2 q = params(p);
+    const Vec2 b = rectangle_boundary_point(q.x(), q.y(), -0.5 * arc, 0.5 * arc, 0.0, h);
+    return point(b.x(), b.y());
+  };
+  return isotropic_remesh(m, o);
+}
+
+std::vector<std::string> shape_names() {
+  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch"};
+}
+
+TriMesh make_shape(std::string_view name, double edge_length) {
+  if (name == "hemisphere") return hemisphere(75.0, edge_length);
+  if (name == "triple-peak") return triple_peak(edge_length);
+  if (name == "monkey-saddle") return monkey_saddle(edge_length);
+  if (name == "disk") return flat_disk(50.0, edge_length);
+  if (name == "rectangle") return rectangle(150.0, 100.0, edge_length);
+  if (name == "cylinder-patch") return cylinder_patch(50.0, kPi, 100.0, edge_length);
+  std::string names;
+  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  throw InvalidInput(fmt::format("unknown shape '{}'; the built-in shapes are: {}", name, names));
+}
+
+}  // namespace knitforge

@@ -1,0 +1,76 @@
+#pragma once
+/// \file shapes.h
+/// Built-in test surfaces, meshed to a target edge length (mm) by isotropic
+/// remeshing with exact projection (seed §2.C.2, Algorithm 2.3): the
+/// triple-peak model (eq. 2.5), the monkey saddle (eq. 2.7) and simple
+/// reference shapes.
+///
+/// Every shape is a disk (one component, one boundary loop, genus 0),
+/// consistently oriented with normals towards +z (outward for the hemisphere
+/// and the cylinder patch), deterministic. Every vertex lies on the analytic
+/// surface (up to rounding) and every boundary vertex on the analytic
+/// boundary curve; corners of rectangular domains are mesh vertices.
+///
+/// \throw InvalidInput (all functions) when a size or the edge length is not
+///        positive and finite, the edge length exceeds a quarter of the
+///        shape's smallest dimension, or it is so small that the mesh would
+///        have more than 20 million faces.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "knitforge/geometry/tri_mesh.h"
+
+namespace knitforge {
+
+/// The default edge length (mm) of make_shape() when none is given.
+inline constexpr double kDefaultShapeEdgeLength = 2.5;
+
+/// Upper hemisphere x²+y²+z² = r², z >= 0, centred at the origin; boundary
+/// the circle of radius r in z = 0. Area 2πr².
+TriMesh hemisphere(double radius = 75.0, double edge_length = kDefaultShapeEdgeLength);
+
+/// Height of the triple-peak surface (mm) at (x, y) (mm): seed eq. 2.5,
+/// f = w Σ exp(-|p - c_i|²/σ²) with c_i = (0,0), (1,0), (-1,0), w = 1.2,
+/// σ² = 0.1 on [-1.5, 1.5] x [-1, 1], uniformly scaled by 50 so that the
+/// domain is [-75, 75] x [-50, 50] mm: z = 50 f(x/50, y/50).
+double triple_peak_height(double x, double y);
+
+/// The triple-peak surface z = triple_peak_height(x, y) over
+/// [-75, 75] x [-50, 50] mm (150 mm wide, about 60 mm tall).
+TriMesh triple_peak(double edge_length = kDefaultShapeEdgeLength);
+
+/// Height of the monkey saddle (mm) at (x, y) (mm): seed eq. 2.7,
+/// z = x³ - 3xy² on the unit disk, uniformly scaled by 50:
+/// z = 50 ((x/50)³ - 3 (x/50)(y/50)²).
+double monkey_saddle_height(double x, double y);
+
+/// The monkey saddle z = monkey_saddle_height(x, y) over the disk of radius
+/// 50 mm (100 x 100 x 100 mm); boundary above the circle x² + y² = 50².
+TriMesh monkey_saddle(double edge_length = kDefaultShapeEdgeLength);
+
+/// The disk of the given radius in z = 0, centred at the origin. Area πr².
+TriMesh flat_disk(double radius = 50.0, double edge_length = kDefaultShapeEdgeLength);
+
+/// The rectangle [-w/2, w/2] x [-h/2, h/2] in z = 0. Area w h.
+TriMesh rectangle(double width = 150.0, double height = 100.0,
+                  double edge_length = kDefaultShapeEdgeLength);
+
+/// An open patch of the cylinder x² + y² = r²: angles in [-a/2, a/2] around
+/// the +x axis (a in radians, 0 < a, r (2π - a) >= edge length so that the
+/// patch does not close), z in [0, height]. Normals point outward. Area r a h.
+TriMesh cylinder_patch(double radius = 50.0, double angle = 3.14159265358979323846,
+                       double height = 100.0, double edge_length = kDefaultShapeEdgeLength);
+
+/// Names accepted by make_shape(), with their default sizes:
+/// hemisphere (r 75), triple-peak (150 x 100), monkey-saddle (100 x 100 x 100),
+/// disk (r 50), rectangle (150 x 100), cylinder-patch (r 50, 180°, height 100).
+std::vector<std::string> shape_names();
+
+/// The named shape at its default size, meshed with the given edge length.
+/// \throw InvalidInput for an unknown name (the message lists the names) or
+///        an invalid edge length.
+TriMesh make_shape(std::string_view name, double edge_length = kDefaultShapeEdgeLength);
+
+}  // namespace knitforge

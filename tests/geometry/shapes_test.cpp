@@ -1,0 +1,219 @@
+#include "knitforge/geometry/shapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "knitforge/geometry/halfedges.h"
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/surface_checks.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct ShapeSpec {
+  std::function<bool(const Vec3&)> on_surface;
+  std::function<bool(const Vec3&)> on_boundary;
+  std::function<bool(const Vec3& centroid, const Vec3& normal)> oriented;
+};
+
+// Properties every built-in shape has (shapes.h).
+void check_shape(const TriMesh& m, double edge, const ShapeSpec& spec) {
+  const SurfaceReport r = validate_surface(m);
+  EXPECT_TRUE(r.is_disk) << r.summary();
+  EXPECT_TRUE(r.issues.empty()) << r.summary();
+  int off_surface = 0, off_boundary = 0, flipped = 0;
+  for (const Vec3& p : m.vertices) off_surface += !spec.on_surface(p);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    if (he.is_boundary_vertex(v)) off_boundary += !spec.on_boundary(m.vertices[v]);
+  }
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    flipped += !spec.oriented(c, face_normal(m, f));
+  }
+  EXPECT_EQ(off_surface, 0);
+  EXPECT_EQ(off_boundary, 0);
+  EXPECT_EQ(flipped, 0);
+  const std::vector<double> lengths = edge_lengths(m);
+  int in_range = 0;
+  double sum = 0.0;
+  for (double l : lengths) {
+    in_range += l >= 0.6 * edge && l <= 1.5 * edge;
+    sum += l;
+  }
+  EXPECT_GE(static_cast<double>(in_range) / lengths.size(), 0.97);
+  const double mean = sum / lengths.size();
+  EXPECT_GT(mean, 0.8 * edge);
+  EXPECT_LT(mean, 1.2 * edge);
+}
+
+bool near(double a, double b) { return std::abs(a - b) <= 1e-9; }
+
+bool on_rectangle_boundary(double x, double y, double x0, double x1, double y0, double y1) {
+  const bool inside = x >= x0 - 1e-9 && x <= x1 + 1e-9 && y >= y0 - 1e-9 && y <= y1 + 1e-9;
+  return inside && (near(x, x0) || near(x, x1) || near(y, y0) || near(y, y1));
+}
+
+bool has_vertex(const TriMesh& m, const Vec3& p) {
+  return std::any_of(m.vertices.begin(), m.vertices.end(), [&](const Vec3& q) { return (q - p).norm() < 1e-12; });
+}
+
+TEST(Shapes, Hemisphere) {
+  const double r = 75.0, edge = 5.0;
+  const TriMesh m = hemisphere(r, edge);
+  check_shape(m, edge,
+              {[&](const Vec3& p) { return near(p.norm(), r) && p.z() >= 0.0; },
+               [&](const Vec3& p) { return near(std::hypot(p.x(), p.y()), r) && p.z() == 0.0; },
+               [](const Vec3& c, const Vec3& n) { return n.dot(c) > 0.0; }});
+  EXPECT_NEAR(total_area(m), 2.0 * kPi * r * r, 0.005 * 2.0 * kPi * r * r);
+  const BoundingBox box = bounding_box(m);
+  EXPECT_NEAR(box.max.z(), r, 0.01 * r);
+  EXPECT_EQ(box.min.z(), 0.0);
+}
+
+TEST(Shapes, FlatDisk) {
+  const double r = 40.0, edge = 4.0;
+  const TriMesh m = flat_disk(r, edge);
+  check_shape(m, edge,
+              {[&](const Vec3& p) { return p.z() == 0.0 && std::hypot(p.x(), p.y()) <= r + 1e-9; },
+               [&](const Vec3& p) { return near(std::hypot(p.x(), p.y()), r); },
+               [](const Vec3&, const Vec3& n) { return n.z() > 0.99; }});
+  // Inscribed polygon: area slightly below πr², within 0.5%.
+  EXPECT_NEAR(total_area(m), kPi * r * r, 0.005 * kPi * r * r);
+  EXPECT_LT(total_area(m), kPi * r * r);
+}
+
+TEST(Shapes, RectangleIsExactWithCorners) {
+  const double w = 60.0, h = 40.0, edge = 4.0;
+  const TriMesh m = rectangle(w, h, edge);
+  check_shape(m, edge,
+              {[&](const Vec3& p) { return p.z() == 0.0 && std::abs(p.x()) <= w / 2 && std::abs(p.y()) <= h / 2; },
+               [&](const Vec3& p) { return on_rectangle_boundary(p.x(), p.y(), -w / 2, w / 2, -h / 2, h / 2); },
+               [](const Vec3&, const Vec3& n) { return n.z() > 0.99; }});
+  EXPECT_NEAR(total_area(m), w * h, 1e-9 * w * h);
+  for (double sx : {-1.0, 1.0})
+    for (double sy : {-1.0, 1.0}) EXPECT_TRUE(has_vertex(m, Vec3(sx * w / 2, sy * h / 2, 0.0)));
+}
+
+// Midpoint-rule area of z = triple_peak_height over [-75, 75] x [-50, 50],
+// with the analytic gradient of eq. 2.5.
+double triple_peak_area_numeric() {
+  const int nx = 900, ny = 600;
+  const double hx = 150.0 / nx, hy = 100.0 / ny;
+  double area = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double u = (-75.0 + (i + 0.5) * hx) / 50.0, v = (-50.0 + (j + 0.5) * hy) / 50.0;
+      double fu = 0.0, fv = 0.0;
+      for (double c : {0.0, 1.0, -1.0}) {
+        const double e = 1.2 * std::exp(-((u - c) * (u - c) + v * v) / 0.1);
+        fu += -2.0 * (u - c) / 0.1 * e;
+        fv += -2.0 * v / 0.1 * e;
+      }
+      area += std::sqrt(1.0 + fu * fu + fv * fv) * hx * hy;
+    }
+  }
+  return area;
+}
+
+TEST(Shapes, TriplePeak) {
+  EXPECT_NEAR(triple_peak_height(0.0, 0.0), 50.0 * 1.2 * (1.0 + 2.0 * std::exp(-10.0)), 1e-12);
+  EXPECT_NEAR(triple_peak_height(50.0, 0.0), 50.0 * 1.2 * (1.0 + std::exp(-10.0) + std::exp(-40.0)), 1e-12);
+  const double edge = 5.0;
+  const TriMesh m = triple_peak(edge);
+  check_shape(m, edge,
+              {[](const Vec3& p) {
+                 return p.z() == triple_peak_height(p.x(), p.y()) && std::abs(p.x()) <= 75.0 &&
+                        std::abs(p.y()) <= 50.0;
+               },
+               [](const Vec3& p) { return on_rectangle_boundary(p.x(), p.y(), -75, 75, -50, 50); },
+               [](const Vec3&, const Vec3& n) { return n.z() > 0.0; }});
+  const double exact = triple_peak_area_numeric();
+  EXPECT_NEAR(total_area(m), exact, 0.01 * exact);
+  const BoundingBox box = bounding_box(m);
+  EXPECT_EQ(box.size().x(), 150.0);
+  EXPECT_EQ(box.size().y(), 100.0);
+  EXPECT_TRUE(has_vertex(m, Vec3(75.0, 50.0, triple_peak_height(75.0, 50.0))));
+}
+
+TEST(Shapes, MonkeySaddle) {
+  EXPECT_DOUBLE_EQ(monkey_saddle_height(50.0, 0.0), 50.0);
+  EXPECT_DOUBLE_EQ(monkey_saddle_height(-50.0, 0.0), -50.0);
+  EXPECT_DOUBLE_EQ(monkey_saddle_height(0.0, 50.0), 0.0);
+  const double edge = 2.5;
+  const TriMesh m = monkey_saddle(edge);
+  check_shape(m, edge,
+              {[](const Vec3& p) {
+                 return p.z() == monkey_saddle_height(p.x(), p.y()) && std::hypot(p.x(), p.y()) <= 50.0 + 1e-9;
+               },
+               [](const Vec3& p) { return near(std::hypot(p.x(), p.y()), 50.0); },
+               [](const Vec3&, const Vec3& n) { return n.z() > 0.0; }});
+  // Area of z = r³cos3φ over the unit disk, |grad| = 3r²: 2π (3√10 + asinh 3)/12, scaled by 50².
+  const double exact = 2500.0 * 2.0 * kPi * (3.0 * std::sqrt(10.0) + std::asinh(3.0)) / 12.0;
+  EXPECT_NEAR(total_area(m), exact, 0.01 * exact);
+  const BoundingBox box = bounding_box(m);
+  EXPECT_NEAR(box.size().x(), 100.0, 0.5);
+  EXPECT_NEAR(box.size().y(), 100.0, 0.5);
+  EXPECT_NEAR(box.size().z(), 100.0, 0.5);
+}
+
+TEST(Shapes, CylinderPatch) {
+  const double r = 30.0, a = 0.75 * kPi, h = 40.0, edge = 3.0;
+  const TriMesh m = cylinder_patch(r, a, h, edge);
+  check_shape(m, edge,
+              {[&](const Vec3& p) {
+                 return near(std::hypot(p.x(), p.y()), r) && std::abs(std::atan2(p.y(), p.x())) <= a / 2 + 1e-12 &&
+                        p.z() >= 0.0 && p.z() <= h;
+               },
+               [&](const Vec3& p) {
+                 const double u = std::atan2(p.y(), p.x());
+                 return near(p.z(), 0.0) || near(p.z(), h) || near(std::abs(u) * r, a / 2 * r);
+               },
+               [](const Vec3& c, const Vec3& n) { return n.dot(Vec3(c.x(), c.y(), 0.0)) > 0.0; }});
+  EXPECT_NEAR(total_area(m), r * a * h, 0.005 * r * a * h);
+  EXPECT_TRUE(has_vertex(m, Vec3(r * std::cos(a / 2), r * std::sin(a / 2), h)));
+}
+
+TEST(Shapes, MakeShapeByNameIsDeterministic) {
+  const auto names = shape_names();
+  ASSERT_EQ(names.size(), 6u);
+  for (const auto& name : names) {
+    const TriMesh a = make_shape(name, 8.0);
+    const TriMesh b = make_shape(name, 8.0);
+    EXPECT_TRUE(validate_surface(a).is_disk) << name;
+    EXPECT_EQ(a.faces, b.faces) << name;
+    ASSERT_EQ(a.vertices.size(), b.vertices.size()) << name;
+    for (size_t v = 0; v < a.vertices.size(); ++v) ASSERT_EQ(a.vertices[v], b.vertices[v]) << name;
+  }
+  // Default sizes: hemisphere r 75, rectangle 150 x 100.
+  EXPECT_NEAR(bounding_box(make_shape("hemisphere", 10.0)).size().x(), 150.0, 1.0);
+  EXPECT_NEAR(total_area(make_shape("rectangle", 10.0)), 15000.0, 1e-6);
+}
+
+TEST(Shapes, BadInputThrows) {
+  try {
+    make_shape("sphere", 5.0);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("hemisphere, triple-peak, monkey-saddle"), std::string::npos);
+  }
+  EXPECT_THROW(make_shape("disk", 0.0), InvalidInput);
+  EXPECT_THROW(make_shape("disk", -1.0), InvalidInput);
+  EXPECT_THROW(make_shape("disk", std::nan("")), InvalidInput);
+  EXPECT_THROW(make_shape("disk", 40.0), InvalidInput);    // larger than a quarter of the radius
+  EXPECT_THROW(make_shape("disk", 1e-4), InvalidInput);    // billions of faces
+  EXPECT_THROW(hemisphere(-3.0, 1.0), InvalidInput);
+  EXPECT_THROW(rectangle(10.0, std::numeric_limits<double>::infinity(), 1.0), InvalidInput);
+  EXPECT_THROW(cylinder_patch(10.0, 2.0 * kPi, 10.0, 1.0), InvalidInput);  // closed
+}
+
+}  // namespace
+}  // namespace knitforge
