@@ -28,6 +28,9 @@ void add_check_command(CLI::App& app, Action& action);
 void add_relax_command(CLI::App& app, Action& action);
 void add_map_command(CLI::App& app, Action& action);
 void add_yarn_command(CLI::App& app, Action& action);
+void add_simulate_command(CLI::App& app, Action& action);
+void add_knitout_command(CLI::App& app, Action& action);
+void add_instructions_command(CLI::App& app, Action& action);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.

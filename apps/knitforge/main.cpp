@@ -25,6 +25,9 @@ int main(int argc, char** argv) {
   cli::add_relax_command(app, action);
   cli::add_map_command(app, action);
   cli::add_yarn_command(app, action);
+  cli::add_simulate_command(app, action);
+  cli::add_knitout_command(app, action);
+  cli::add_instructions_command(app, action);
 
   try {
     app.parse(argc, argv);

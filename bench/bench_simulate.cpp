@@ -1,0 +1,64 @@
+// Benchmarks of the knitout simulator (docs/machines.md, "The simulator").
+//
+// The program: write_knitout() of a 300 x 300 map with 594 short-row ends
+// (the most the random generator fits in 300 rows: one stacked pair per turn;
+// 1,000 do not fit) and 200 short columns, random_knitting_map(seed 1), for
+// the Shima-like profile. Goal: parse + simulate < 0.5 s.
+
+#include <benchmark/benchmark.h>
+
+#include "knitforge/convert/random_knitting_map.h"
+#include "knitforge/machine/knit_graph_compare.h"
+#include "knitforge/machine/knitout_parse.h"
+#include "knitforge/machine/knitout_simulate.h"
+#include "knitforge/machine/knitout_writer.h"
+#include "knitforge/machine/machine_profile.h"
+
+using namespace knitforge;
+
+namespace {
+
+const KnittingMap& big_map() {
+  static const KnittingMap map = [] {
+    RandomMapOptions o;
+    o.seed = 1;
+    o.rows = 300;
+    o.cols = 300;
+    o.short_row_ends = 594;
+    o.short_columns = 200;
+    return random_knitting_map(o);
+  }();
+  return map;
+}
+
+const std::string& big_program() {
+  static const std::string text = write_knitout(big_map(), machine_profile("shima-swg091n2")).text;
+  return text;
+}
+
+void BM_ParseKnitout(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(parse_knitout(big_program()));
+}
+
+void BM_ParseAndSimulateKnitout(benchmark::State& state) {
+  const MachineProfile& p = machine_profile("shima-swg091n2");
+  for (auto _ : state) {
+    const KnitoutSimulation sim = simulate_knitout(parse_knitout(big_program()), p);
+    if (!sim.ok()) state.SkipWithError("the benchmark program does not simulate cleanly");
+    benchmark::DoNotOptimize(sim.stats.time_s);
+  }
+  state.counters["lines"] = static_cast<double>(parse_knitout(big_program()).num_lines);
+}
+
+void BM_CompareKnitGraph(benchmark::State& state) {
+  const KnitoutSimulation sim =
+      simulate_knitout(parse_knitout(big_program()), machine_profile("shima-swg091n2"));
+  for (auto _ : state) benchmark::DoNotOptimize(compare_knit_graph(sim.graph, big_map()).mismatches);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ParseKnitout)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ParseAndSimulateKnitout)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompareKnitGraph)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
