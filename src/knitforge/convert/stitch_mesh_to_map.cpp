@@ -1,0 +1,197 @@
+#include "knitforge/convert/stitch_mesh_to_map.h"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+#include <tuple>
+
+#include <fmt/core.h>
+
+#include "knitforge/core/stitch_adjacency.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+
+namespace {
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) {
+    while (parent[a] != a) {
+      parent[a] = parent[parent[a]];
+      a = parent[a];
+    }
+    return a;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Component id per stitch, numbered 0..count-1 in order of the smallest stitch.
+std::vector<int> components(UnionFind& uf, int n, int* count) {
+  std::vector<int> id(n, -1), comp(n);
+  int k = 0;
+  for (int s = 0; s < n; ++s) {
+    const int r = uf.find(s);
+    if (id[r] < 0) id[r] = k++;
+    comp[s] = id[r];
+  }
+  *count = k;
+  return comp;
+}
+
+// Kahn's algorithm on a DAG given as an edge list; `key` orders the ready
+// nodes (smallest first). Returns the position of each node, or an empty
+// vector when a cycle remains.
+template <typename Key>
+std::vector<int> topological_order(int n, const std::vector<std::pair<int, int>>& edges, const std::vector<Key>& key) {
+  std::vector<int> indeg(n, 0), start(n + 1, 0), adj(edges.size());
+  for (const auto& e : edges) ++start[e.first + 1], ++indeg[e.second];
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) adj[fill[e.first]++] = e.second;
+  using Item = std::pair<Key, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> ready;
+  for (int i = 0; i < n; ++i) {
+    if (indeg[i] == 0) ready.emplace(key[i], i);
+  }
+  std::vector<int> pos(n, -1);
+  int next = 0;
+  while (!ready.empty()) {
+    const int u = ready.top().second;
+    ready.pop();
+    pos[u] = next++;
+    for (int k = start[u]; k < start[u + 1]; ++k) {
+      if (--indeg[adj[k]] == 0) ready.emplace(key[adj[k]], adj[k]);
+    }
+  }
+  if (next != n) return {};
+  return pos;
+}
+
+}  // namespace
+
+KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
+  const int n = mesh.num_stitches();
+  if (n == 0) throw InvalidInput("stitch_mesh_to_map: the stitch mesh has no stitches");
+  const StitchAdjacency adj(mesh);
+  for (int s = 0; s < n; ++s) {
+    for (int k = 0; k < 4; ++k) {
+      const Side side = static_cast<Side>(k);
+      const int t = adj.neighbor(s, side);
+      if (t >= 0 && adj.neighbor_side(s, side) != opposite_side(side)) {
+        throw InvalidInput(fmt::format(
+            "stitches {} and {} meet across side {} of stitch {} and side {} of stitch {}; neighbours must meet "
+            "across opposite sides (Right against Left, Top against Bottom): check their types and corner order",
+            s, t, k, s, static_cast<int>(adj.neighbor_side(s, side)), t));
+      }
+    }
+  }
+
+  // Row and column components.
+  UnionFind urow(n), ucol(n);
+  for (int s = 0; s < n; ++s) {
+    const int r = adj.neighbor(s, Side::Right);
+    if (r >= 0) urow.unite(s, r);
+    const int t = adj.neighbor(s, Side::Top);
+    if (t >= 0) ucol.unite(s, t);
+  }
+  int nrows = 0, ncols = 0;
+  const std::vector<int> row = components(urow, n, &nrows);
+  const std::vector<int> col = components(ucol, n, &ncols);
+
+  // Row order: Bottom neighbour's row before the Top neighbour's row.
+  std::vector<std::pair<int, int>> row_edges, col_edges;
+  for (int s = 0; s < n; ++s) {
+    const int t = adj.neighbor(s, Side::Top);
+    if (t < 0) continue;
+    if (row[s] == row[t]) {
+      throw InvalidInput(fmt::format("stitch {} and its Top neighbour {} lie in the same row: the rows form a helix "
+                                     "(a course that climbs into itself), which cannot be knitted",
+                                     s, t));
+    }
+    row_edges.emplace_back(row[s], row[t]);
+  }
+  std::vector<int> row_min(nrows, n);
+  for (int s = 0; s < n; ++s) row_min[row[s]] = std::min(row_min[row[s]], s);
+  const std::vector<int> row_pos = topological_order(nrows, row_edges, row_min);
+  if (row_pos.empty()) {
+    throw InvalidInput("stitch_mesh_to_map: the rows form a cycle (a course is both below and above another one); "
+                       "the mesh cannot be knitted bottom to top");
+  }
+
+  for (int s = 0; s < n; ++s) {
+    const int t = adj.neighbor(s, Side::Right);
+    if (t < 0) continue;
+    if (col[s] == col[t]) {
+      throw InvalidInput(fmt::format("stitch {} and its Right neighbour {} lie in the same column: the columns form "
+                                     "a helix, which cannot be knitted",
+                                     s, t));
+    }
+    col_edges.emplace_back(col[s], col[t]);
+  }
+  // Tie-break key per column: (row of its lowest stitch, that stitch's index).
+  std::vector<std::pair<int, int>> col_key(ncols, {nrows, n});
+  for (int s = 0; s < n; ++s) {
+    col_key[col[s]] = std::min(col_key[col[s]], std::pair<int, int>(row_pos[row[s]], s));
+  }
+  const std::vector<int> col_pos = topological_order(ncols, col_edges, col_key);
+  if (col_pos.empty()) {
+    throw InvalidInput("stitch_mesh_to_map: the columns form a cycle (a wale is both left and right of another "
+                       "one), e.g. a tube; cut the mesh open along a wale");
+  }
+
+  KnittingMap map(nrows, ncols, CellType::Empty);
+  std::vector<int> owner(static_cast<size_t>(nrows) * ncols, -1);
+  std::vector<int> row_stitch(nrows, -1);
+  for (int s = 0; s < n; ++s) {
+    const Stitch& st = mesh.stitches[s];
+    const int r = row_pos[row[s]], c = col_pos[col[s]];
+    int& o = owner[static_cast<size_t>(r) * ncols + c];
+    if (o >= 0) {
+      throw InvalidInput(fmt::format("stitches {} and {} both fall into map cell (row {}, column {}); the rows and "
+                                     "columns of the mesh are not consistent",
+                                     o, s, r, c));
+    }
+    o = s;
+    int& rs = row_stitch[r];
+    if (rs < 0) {
+      rs = s;
+      map.direction[r] = st.direction;
+    } else if (mesh.stitches[rs].direction != st.direction) {
+      throw InvalidInput(fmt::format("stitches {} and {} lie in the same row (map row {}) but have directions {} and "
+                                     "{}; a row is knitted in one direction",
+                                     rs, s, r, static_cast<int>(mesh.stitches[rs].direction),
+                                     static_cast<int>(st.direction)));
+    }
+    map.at(r, c) = to_cell_type(st.type);
+    if (st.yarn != 0) map.set_yarn(r, c, st.yarn);
+  }
+  auto collapse = [&](int r, int c, int s, int t) {
+    CellType& cell = map.at(r, c);
+    if (is_stitch(cell)) {
+      throw InvalidInput(fmt::format("stitch {} lies in map cell (row {}, column {}) between the neighbours {} and "
+                                     "{}; the rows and columns of the mesh are not consistent",
+                                     owner[static_cast<size_t>(r) * ncols + c], r, c, s, t));
+    }
+    cell = CellType::Collapsed;
+  };
+  for (int s = 0; s < n; ++s) {
+    const int r = row_pos[row[s]], c = col_pos[col[s]];
+    const int right = adj.neighbor(s, Side::Right);
+    if (right >= 0) {
+      for (int cc = c + 1; cc < col_pos[col[right]]; ++cc) collapse(r, cc, s, right);
+    }
+    const int top = adj.neighbor(s, Side::Top);
+    if (top >= 0) {
+      for (int rr = r + 1; rr < row_pos[row[top]]; ++rr) collapse(rr, c, s, top);
+    }
+  }
+  return map;
+}
+
+}  // namespace knitforge

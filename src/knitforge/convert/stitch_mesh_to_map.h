@@ -1,0 +1,34 @@
+#pragma once
+/// \file stitch_mesh_to_map.h
+/// Stitch mesh -> knitting map (seed §1.3.1, Algorithm 1.1).
+///
+/// Rows are the components of stitches joined across Left/Right sides,
+/// columns those joined across Bottom/Top sides. Rows are ordered by a
+/// topological sort of "the Bottom neighbour's row is knitted before the Top
+/// neighbour's row" (ties, which a knittable mesh never has, go to the row
+/// with the smallest stitch index); columns by "the Left neighbour's column
+/// is left of the Right neighbour's column", ties broken by Kahn's algorithm
+/// taking, among the ready columns, the one whose lowest stitch has the
+/// smallest row, then the smallest stitch index. Each stitch fills the cell
+/// (row, column) with its type and yarn; cells between two mesh neighbours
+/// that are not grid neighbours become Collapsed, all other cells Empty. The
+/// row direction is the direction of its stitches. The result is canonical:
+/// map_to_stitch_mesh_topology() of it gives the same stitches back, and for
+/// canonical maps map -> mesh -> map is the identity.
+///
+/// Runs in O(stitches + rows * cols).
+
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
+
+namespace knitforge {
+
+/// The knitting map of a stitch mesh (vertex positions are not used).
+/// \throw InvalidInput naming the stitches when the mesh is empty, the rows or
+///        columns form a cycle (a helix), stitches of one row disagree on the
+///        direction, two stitches fall into the same cell, or two
+///        neighbours meet across sides that are not opposite (my Right against
+///        your Top); TopologyError when the mesh is not an oriented manifold.
+KnittingMap stitch_mesh_to_map(const StitchMesh& mesh);
+
+}  // namespace knitforge

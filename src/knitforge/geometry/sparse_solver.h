@@ -1,0 +1,57 @@
+#pragma once
+/// \file sparse_solver.h
+/// The one sparse linear-algebra wrapper of knitforge (ARCHITECTURE.md):
+/// a symmetric positive definite matrix factored once with CHOLMOD's
+/// Cholesky (simplicial LL^T, via Eigen's CholmodSupport; it beat the
+/// supernodal factor with the reference BLAS Debian installs), then any number of
+/// right-hand sides solved against the factor. Failures are checked and
+/// reported as SolverError instead of silently returning garbage.
+
+#include <memory>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace knitforge {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// Cholesky factor of a sparse symmetric positive definite matrix.
+/// Move-only. Only the lower triangle of the matrix is read.
+class SparseSolver {
+ public:
+  SparseSolver();
+  /// Factors A (see factor()).
+  explicit SparseSolver(const SparseMatrix& A);
+  ~SparseSolver();
+  SparseSolver(SparseSolver&&) noexcept;
+  SparseSolver& operator=(SparseSolver&&) noexcept;
+  SparseSolver(const SparseSolver&) = delete;
+  SparseSolver& operator=(const SparseSolver&) = delete;
+
+  /// Factors A = L L^T (replacing any previous factor).
+  /// \throw InvalidInput when A is not square, empty, or has non-finite entries;
+  ///        SolverError when A is not positive definite (singular or
+  ///        indefinite), naming the column where the factorisation stopped.
+  void factor(const SparseMatrix& A);
+
+  bool factored() const;
+  /// Size of the factored matrix (0 before factor()).
+  int rows() const;
+
+  /// Solves A x = b. \throw InvalidInput when not factored or b has the wrong
+  /// size; SolverError when the solution is not finite.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Solves A X = B for all columns of B at once (same checks as above);
+  /// cheaper than one solve() per column.
+  Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One-shot: factors A and solves A x = b. Throws as SparseSolver.
+Eigen::VectorXd solve_spd(const SparseMatrix& A, const Eigen::VectorXd& b);
+
+}  // namespace knitforge

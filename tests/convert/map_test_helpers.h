@@ -1,0 +1,74 @@
+#pragma once
+// Helpers shared by the convert tests: knitting maps drawn as text and
+// knittability checks written independently of the code under test.
+
+#include <string>
+#include <vector>
+
+#include "knitforge/convert/map_to_stitch_mesh.h"
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_adjacency.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge::test {
+
+// A map drawn top row first. K knit, L short-row-left, R short-row-right,
+// I increase, D decrease, '.' collapsed, '_' empty. Directions alternate,
+// row 0 (the last string) left to right.
+inline KnittingMap parse_map(const std::vector<std::string>& top_first) {
+  const int R = static_cast<int>(top_first.size());
+  const int C = R ? static_cast<int>(top_first[0].size()) : 0;
+  KnittingMap m(R, C);
+  for (int i = 0; i < R; ++i) {
+    const std::string& s = top_first[R - 1 - i];
+    if (static_cast<int>(s.size()) != C) throw std::logic_error("ragged test map");
+    for (int c = 0; c < C; ++c) {
+      CellType t = CellType::Empty;
+      switch (s[c]) {
+        case 'K': t = CellType::Knit; break;
+        case 'L': t = CellType::ShortRowLeft; break;
+        case 'R': t = CellType::ShortRowRight; break;
+        case 'I': t = CellType::Increase; break;
+        case 'D': t = CellType::Decrease; break;
+        case '.': t = CellType::Collapsed; break;
+        case '_': t = CellType::Empty; break;
+        default: throw std::logic_error("bad test map character");
+      }
+      m.at(i, c) = t;
+    }
+  }
+  return m;
+}
+
+inline std::string draw_map(const KnittingMap& m) {
+  static const char kChars[] = "KLRID._";
+  std::string out;
+  for (int r = m.rows - 1; r >= 0; --r) {
+    out += m.direction[r] > 0 ? "> " : "< ";
+    for (int c = 0; c < m.cols; ++c) out += kChars[static_cast<int>(m.at(r, c))];
+    out += '\n';
+  }
+  return out;
+}
+
+// True when next_stitch() visits the stitches 0, 1, ..., n-1 in that order.
+inline bool one_stroke_in_index_order(const StitchMesh& mesh) {
+  const StitchAdjacency adj(mesh);
+  for (int s = 0; s < mesh.num_stitches(); ++s) {
+    const int expect = s + 1 < mesh.num_stitches() ? s + 1 : -1;
+    if (adj.next_stitch(s) != expect) return false;
+  }
+  return true;
+}
+
+inline int count_boundary_apexes(const StitchMesh& mesh) {
+  const StitchAdjacency adj(mesh);
+  int n = 0;
+  for (const Stitch& s : mesh.stitches) {
+    const int v = apex_vertex(s);
+    if (v >= 0 && adj.is_boundary_vertex(v)) ++n;
+  }
+  return n;
+}
+
+}  // namespace knitforge::test
