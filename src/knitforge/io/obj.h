@@ -1,0 +1,24 @@
+#pragma once
+/// \file obj.h
+/// OBJ triangle-mesh reader and writer (see mesh_io.h for the dispatcher and
+/// docs/formats.md for the accepted dialect).
+
+#include <string>
+
+#include "knitforge/geometry/tri_mesh.h"
+#include "knitforge/io/mesh_io.h"
+
+namespace knitforge {
+
+/// Reads a OBJ file into a triangle mesh (polygons fan-triangulated).
+/// \throw IOError naming the file and line (or byte offset) on any problem:
+///        missing/empty/truncated file, bad counts or indices, non-finite
+///        coordinates, no faces, non-manifold or inconsistently oriented mesh.
+TriMesh read_obj(const std::string& path);
+
+/// Writes `mesh` as OBJ, atomically.
+/// \throw InvalidInput for bad indices, non-finite coordinates, wrong-sized or
+///        unsupported colours; IOError when the file cannot be written.
+void write_obj(const std::string& path, const TriMesh& mesh, const MeshWriteOptions& options = {});
+
+}  // namespace knitforge
