@@ -12,29 +12,8 @@ namespace knitforge {
 
 namespace {
 
-bool has_side(CellType c, Side s) { return is_stitch(c) && edge_of_side(to_stitch_type(c), s) >= 0; }
-
 void check_structure(const KnittingMap& m, const KnitParams& params) {
-  if (m.rows < 0 || m.cols < 0) {
-    throw InvalidInput(fmt::format("knitting map has negative size {} x {}", m.rows, m.cols));
-  }
-  const size_t n = static_cast<size_t>(m.rows) * static_cast<size_t>(m.cols);
-  if (m.cells.size() != n) {
-    throw InvalidInput(
-        fmt::format("knitting map is {} x {} but holds {} cells (expected {})", m.rows, m.cols, m.cells.size(), n));
-  }
-  if (m.direction.size() != static_cast<size_t>(m.rows)) {
-    throw InvalidInput(fmt::format("knitting map has {} rows but {} row directions", m.rows, m.direction.size()));
-  }
-  if (!m.yarn.empty() && m.yarn.size() != n) {
-    throw InvalidInput(fmt::format("knitting map holds {} yarn indices; expected none or {}", m.yarn.size(), n));
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (static_cast<uint8_t>(m.cells[i]) > static_cast<uint8_t>(CellType::Empty)) {
-      throw InvalidInput(fmt::format("knitting map cell (row {}, column {}) has an unknown type {}", i / m.cols,
-                                     i % m.cols, static_cast<int>(m.cells[i])));
-    }
-  }
+  check_map_arrays(m);
   if (!(params.stitch_width > 0 && std::isfinite(params.stitch_width)) ||
       !(params.stitch_height > 0 && std::isfinite(params.stitch_height))) {
     throw InvalidInput(fmt::format("stitch size {} x {} mm: both must be positive and finite", params.stitch_width,

@@ -9,6 +9,7 @@
 
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/union_find.h"
 
 namespace knitforge {
 
@@ -16,31 +17,6 @@ namespace {
 
 constexpr uint8_t kInRow = 1;
 constexpr uint8_t kInCol = 2;
-
-bool has_side(CellType c, Side s) { return is_stitch(c) && edge_of_side(to_stitch_type(c), s) >= 0; }
-
-void check_sizes(const KnittingMap& m) {
-  if (m.rows < 0 || m.cols < 0) {
-    throw InvalidInput(fmt::format("knitting map has negative size {} x {}", m.rows, m.cols));
-  }
-  const size_t n = static_cast<size_t>(m.rows) * static_cast<size_t>(m.cols);
-  if (m.cells.size() != n) {
-    throw InvalidInput(fmt::format("knitting map is {} x {} but holds {} cells (expected {})", m.rows, m.cols,
-                                   m.cells.size(), n));
-  }
-  if (m.direction.size() != static_cast<size_t>(m.rows)) {
-    throw InvalidInput(fmt::format("knitting map has {} rows but {} row directions", m.rows, m.direction.size()));
-  }
-  if (!m.yarn.empty() && m.yarn.size() != n) {
-    throw InvalidInput(fmt::format("knitting map holds {} yarn indices; expected none or {}", m.yarn.size(), n));
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (static_cast<uint8_t>(m.cells[i]) > static_cast<uint8_t>(CellType::Empty)) {
-      throw InvalidInput(fmt::format("knitting map cell (row {}, column {}) has an unknown type {}", i / m.cols,
-                                     i % m.cols, static_cast<int>(m.cells[i])));
-    }
-  }
-}
 
 // Per cell: kInRow / kInCol bits for Collapsed cells (0 for all others).
 std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
@@ -100,29 +76,12 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
   return kind;
 }
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) {
-    while (parent[a] != a) {
-      parent[a] = parent[parent[a]];
-      a = parent[a];
-    }
-    return a;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
 constexpr const char* kCornerNames[4] = {"bottom-left", "bottom-right", "top-right", "top-left"};
 
 }  // namespace
 
 KnittingMap canonical_cells(const KnittingMap& map) {
-  check_sizes(map);
+  check_map_arrays(map);
   const std::vector<uint8_t> kind = classify_collapsed(map);
   KnittingMap out = map;
   for (size_t i = 0; i < out.cells.size(); ++i) {
@@ -132,7 +91,7 @@ KnittingMap canonical_cells(const KnittingMap& map) {
 }
 
 StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams& params) {
-  check_sizes(map);
+  check_map_arrays(map);
   if (!(std::isfinite(params.stitch_width) && params.stitch_width > 0 && std::isfinite(params.stitch_height) &&
         params.stitch_height > 0)) {
     throw InvalidInput(fmt::format("stitch size {} x {} mm: both must be finite and > 0", params.stitch_width,
@@ -206,7 +165,7 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
 
   StitchMesh mesh;
   mesh.stitches.reserve(static_cast<size_t>(map.num_stitches()));
-  std::vector<int> vertex_of_root(uf.parent.size(), -1);
+  std::vector<int> vertex_of_root(uf.size(), -1);
   std::vector<std::pair<int, int>> cell_of_stitch;
   for (int r = 0; r < R; ++r) {
     const int d = map.direction[r];

@@ -9,27 +9,11 @@
 
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/union_find.h"
 
 namespace knitforge {
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) {
-    while (parent[a] != a) {
-      parent[a] = parent[parent[a]];
-      a = parent[a];
-    }
-    return a;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Component id per stitch, numbered 0..count-1 in order of the smallest stitch.
 std::vector<int> components(UnionFind& uf, int n, int* count) {

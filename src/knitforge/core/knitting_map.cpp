@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#include <fmt/core.h>
+
+#include "knitforge/util/errors.h"
+
 namespace knitforge {
 
 KnittingMap::KnittingMap(int r, int c, CellType fill)
@@ -29,6 +33,29 @@ bool KnittingMap::operator==(const KnittingMap& o) const {
     }
   }
   return true;
+}
+
+void check_map_arrays(const KnittingMap& m) {
+  if (m.rows < 0 || m.cols < 0) {
+    throw InvalidInput(fmt::format("knitting map has negative size {} x {}", m.rows, m.cols));
+  }
+  const size_t n = static_cast<size_t>(m.rows) * static_cast<size_t>(m.cols);
+  if (m.cells.size() != n) {
+    throw InvalidInput(fmt::format("knitting map is {} x {} but holds {} cells (expected {})", m.rows, m.cols,
+                                   m.cells.size(), n));
+  }
+  if (m.direction.size() != static_cast<size_t>(m.rows)) {
+    throw InvalidInput(fmt::format("knitting map has {} rows but {} row directions", m.rows, m.direction.size()));
+  }
+  if (!m.yarn.empty() && m.yarn.size() != n) {
+    throw InvalidInput(fmt::format("knitting map holds {} yarn indices; expected none or {}", m.yarn.size(), n));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (static_cast<uint8_t>(m.cells[i]) > static_cast<uint8_t>(CellType::Empty)) {
+      throw InvalidInput(fmt::format("knitting map cell (row {}, column {}) has an unknown type {}", i / m.cols,
+                                     i % m.cols, static_cast<int>(m.cells[i])));
+    }
+  }
 }
 
 }  // namespace knitforge

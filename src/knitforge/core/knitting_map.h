@@ -41,4 +41,9 @@ struct KnittingMap {
   bool operator==(const KnittingMap& o) const;
 };
 
+/// Checks that the map's arrays agree with rows x cols (cells, one direction
+/// per row, no or rows*cols yarn indices) and every cell has a known type.
+/// \throw InvalidInput saying which array is wrong, or the cell (row, column).
+void check_map_arrays(const KnittingMap& map);
+
 }  // namespace knitforge

@@ -88,6 +88,10 @@ constexpr bool is_stitch(CellType c) { return static_cast<uint8_t>(c) < kNumStit
 constexpr StitchType to_stitch_type(CellType c) { return static_cast<StitchType>(c); }
 constexpr CellType to_cell_type(StitchType t) { return static_cast<CellType>(t); }
 
+/// True when cell c is a stitch that has side s (a ShortRowLeft has no Left
+/// side, an Increase no Bottom side, ...).
+inline bool has_side(CellType c, Side s) { return is_stitch(c) && edge_of_side(to_stitch_type(c), s) >= 0; }
+
 /// Short names used in files and messages: "knit", "short-row-left",
 /// "short-row-right", "increase", "decrease", "collapsed", "empty".
 std::string_view name(StitchType t);

@@ -12,7 +12,6 @@ namespace knitforge {
 
 namespace {
 
-bool has_side(CellType t, Side s) { return is_stitch(t) && edge_of_side(to_stitch_type(t), s) >= 0; }
 
 // alive[r*cols+c]: stitch cell, or Collapsed cell between two stitches of its column.
 std::vector<uint8_t> alive_cells(const KnittingMap& m) {
