@@ -7,6 +7,11 @@ JOBS       ?= $(shell nproc)
 DEMO_OUT   ?= out/demo
 CMAKE_FLAGS = -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 
+# ccache: key on paths relative to the checkout so fresh clones (CI) reuse
+# objects compiled in any other checkout on the same machine.
+export CCACHE_BASEDIR   := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
+
 .PHONY: all setup configure build demo test test-release test-asan bench clean
 
 all: build
@@ -31,7 +36,7 @@ test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 600
 
 $(ASAN_BUILD)/build.ninja:
-	cmake -S . -B $(ASAN_BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	cmake -S . -B $(ASAN_BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 \
 	  -DKNITFORGE_SANITIZE=ON -DKNITFORGE_BUILD_BENCH=OFF
 
 test-asan: setup $(ASAN_BUILD)/build.ninja
