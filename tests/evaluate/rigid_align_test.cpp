@@ -1,0 +1,178 @@
+#include "knitforge/evaluate/rigid_align.h"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+namespace {
+
+std::vector<Vec3> random_points(int n, uint32_t seed, double scale = 50.0) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-scale, scale);
+  std::vector<Vec3> p(n);
+  for (Vec3& x : p) x = Vec3(u(rng), u(rng), u(rng));
+  return p;
+}
+
+Mat3 rotation(double angle, Vec3 axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
+
+TEST(RigidAlign, RecoversAKnownMotionExactly) {
+  const std::vector<Vec3> from = random_points(40, 1);
+  for (int k = 0; k < 6; ++k) {
+    const Mat3 R = rotation(0.3 + 1.1 * k, Vec3(1, 2 - k, 0.5 * k));  // includes angles near pi
+    const Vec3 t(10.0 * k - 7, 3, -20);
+    std::vector<Vec3> to;
+    for (const Vec3& p : from) to.push_back(R * p + t);
+    const RigidTransform T = rigid_align(from, to);
+    EXPECT_LT((T.rotation - R).cwiseAbs().maxCoeff(), 1e-9) << k;
+    EXPECT_LT((T.translation - t).cwiseAbs().maxCoeff(), 1e-9) << k;
+    EXPECT_NEAR(T.rotation.determinant(), 1.0, 1e-12);
+  }
+}
+
+TEST(RigidAlign, ThreePointsSuffice) {
+  const std::vector<Vec3> from = {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(0, 2, 0)};
+  const Mat3 R = rotation(2.0, Vec3(0.3, -1, 0.2));
+  const Vec3 t(1, 2, 3);
+  std::vector<Vec3> to;
+  for (const Vec3& p : from) to.push_back(R * p + t);
+  const RigidTransform T = rigid_align(from, to);
+  EXPECT_LT((T.rotation - R).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((T.translation - t).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(RigidAlign, NeverReturnsAReflection) {
+  // The target is the mirror image of the source: the best *proper* rotation
+  // must be returned, with det +1 and an orthonormal matrix.
+  const std::vector<Vec3> from = random_points(30, 2);
+  std::vector<Vec3> to;
+  for (const Vec3& p : from) to.push_back(Vec3(-p.x(), p.y(), p.z()));
+  const RigidTransform T = rigid_align(from, to);
+  EXPECT_NEAR(T.rotation.determinant(), 1.0, 1e-12);
+  EXPECT_LT((T.rotation.transpose() * T.rotation - Mat3::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  // Its residual is no worse than that of any of many random rotations
+  // (each with its optimal translation).
+  auto residual = [&](const Mat3& R) {
+    Vec3 cf = Vec3::Zero(), ct = Vec3::Zero();
+    for (size_t i = 0; i < from.size(); ++i) cf += from[i], ct += to[i];
+    const Vec3 t = (ct - R * cf) / static_cast<double>(from.size());
+    double s = 0;
+    for (size_t i = 0; i < from.size(); ++i) s += (R * from[i] + t - to[i]).squaredNorm();
+    return s;
+  };
+  const double best = residual(T.rotation);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 200; ++k) {
+    const Mat3 R = rotation(3.0 * std::abs(g(rng)), Vec3(g(rng), g(rng), g(rng)));
+    EXPECT_LE(best, residual(R) * (1 + 1e-12));
+  }
+}
+
+TEST(RigidAlign, ZeroWeightsIgnoreOutliers) {
+  std::vector<Vec3> from = random_points(20, 4);
+  const Mat3 R = rotation(0.7, Vec3(0, 0, 1));
+  const Vec3 t(0, -5, 2);
+  std::vector<Vec3> to;
+  for (const Vec3& p : from) to.push_back(R * p + t);
+  std::vector<double> w(20, 2.5);
+  to[3] += Vec3(100, 0, 0);
+  to[7] += Vec3(0, 40, 9);
+  w[3] = w[7] = 0;
+  const RigidTransform T = rigid_align(from, to, w);
+  EXPECT_LT((T.rotation - R).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((T.translation - t).cwiseAbs().maxCoeff(), 1e-9);
+  // Without the weights the outliers pull the fit away.
+  const RigidTransform U = rigid_align(from, to);
+  EXPECT_GT((U.translation - t).norm(), 1.0);
+}
+
+TEST(RigidAlign, BadInputThrows) {
+  const std::vector<Vec3> a = random_points(5, 5), b = random_points(4, 6);
+  EXPECT_THROW(rigid_align(a, b), InvalidInput);
+  EXPECT_THROW(rigid_align(std::vector<Vec3>{}, std::vector<Vec3>{}), InvalidInput);
+  std::vector<Vec3> c = a;
+  c[2].x() = NAN;
+  EXPECT_THROW(rigid_align(a, c), InvalidInput);
+  EXPECT_THROW(rigid_align(a, a, std::vector<double>(5, 0.0)), InvalidInput);
+  EXPECT_THROW(rigid_align(a, a, std::vector<double>{1, 1, -1, 1, 1}), InvalidInput);
+  EXPECT_THROW(rigid_align(a, a, std::vector<double>{1, 1}), InvalidInput);
+}
+
+// A bumpy height field z = f(x, y) over [0, 60]^2, not symmetric, so the
+// alignment onto it is unique.
+TriMesh bumpy_surface(int n) {
+  TriMesh m;
+  const double h = 60.0 / n;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const double x = j * h, y = i * h;
+      m.vertices.emplace_back(x, y, 8 * std::sin(x / 13) * std::cos(y / 17) + 0.002 * x * y);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 2, d = a + n + 1;
+      m.faces.push_back({a, b, c});
+      m.faces.push_back({a, c, d});
+    }
+  }
+  return m;
+}
+
+TEST(AlignToSurface, RecoversASmallMotionOntoACurvedSurface) {
+  const TriMesh surface = bumpy_surface(40);
+  // Points on the surface (its vertices away from the border), moved by a
+  // small rigid motion; ICP must bring them back onto it.
+  std::vector<Vec3> on;
+  for (const Vec3& v : surface.vertices) {
+    if (v.x() > 8 && v.x() < 52 && v.y() > 8 && v.y() < 52) on.push_back(v);
+  }
+  const Mat3 R = rotation(0.03, Vec3(1, 1, 0));
+  const Vec3 t(0.6, -0.4, 0.8);
+  std::vector<Vec3> moved;
+  for (const Vec3& p : on) moved.push_back(R * p + t);
+  IcpOptions o;
+  o.max_iterations = 200;
+  o.tolerance = 1e-9;
+  const IcpResult r = align_to_surface(moved, surface, RigidTransform{}, o);
+  EXPECT_GT(r.initial_rms, 0.5);
+  EXPECT_LT(r.rms, 1e-3 * r.initial_rms);
+  EXPECT_LE(r.rms, r.initial_rms);
+  EXPECT_NEAR(r.transform.rotation.determinant(), 1.0, 1e-12);
+  // The recovered motion undoes the applied one.
+  const RigidTransform back = r.transform.after(RigidTransform{R, t});
+  EXPECT_LT((back.rotation - Mat3::Identity()).norm(), 1e-3);
+  EXPECT_LT(back.translation.norm(), 0.05);
+}
+
+TEST(AlignToSurface, StartsFromTheInitialTransformAndNeverGetsWorse) {
+  const TriMesh surface = bumpy_surface(20);
+  const std::vector<Vec3> pts(surface.vertices.begin() + 50, surface.vertices.begin() + 200);
+  // Already on the surface: identity is optimal, RMS 0, no iteration needed.
+  const IcpResult r0 = align_to_surface(pts, surface);
+  EXPECT_EQ(r0.rms, 0.0);
+  EXPECT_EQ(r0.iterations, 0);
+  // With zero iterations the initial transform is returned unchanged.
+  IcpOptions o;
+  o.max_iterations = 0;
+  const RigidTransform init{rotation(0.1, Vec3(0, 0, 1)), Vec3(1, 2, 3)};
+  const IcpResult r1 = align_to_surface(pts, surface, init, o);
+  EXPECT_EQ(r1.transform.rotation, init.rotation);
+  EXPECT_EQ(r1.transform.translation, init.translation);
+  EXPECT_EQ(r1.rms, r1.initial_rms);
+  o.max_iterations = 5;
+  const IcpResult r2 = align_to_surface(pts, surface, init, o);
+  EXPECT_LT(r2.rms, r1.rms);
+  o.max_iterations = -1;
+  EXPECT_THROW(align_to_surface(pts, surface, init, o), InvalidInput);
+  EXPECT_THROW(align_to_surface(std::vector<Vec3>{}, surface), InvalidInput);
+}
+
+}  // namespace
+}  // namespace knitforge
