@@ -11,33 +11,13 @@
 #include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/util/errors.h"
+#include "convert/map_test_helpers.h"
 
 using namespace knitforge;
+using knitforge::test::make_map;
 
 namespace {
 
-// Map from strings, top row first; K < > I D . and space (Empty).
-KnittingMap make_map(const std::vector<std::string>& top_first) {
-  const int rows = static_cast<int>(top_first.size()), cols = static_cast<int>(top_first[0].size());
-  KnittingMap m(rows, cols);
-  for (int r = 0; r < rows; ++r) {
-    const std::string& line = top_first[rows - 1 - r];
-    for (int c = 0; c < cols; ++c) {
-      CellType t = CellType::Empty;
-      switch (line[c]) {
-        case 'K': t = CellType::Knit; break;
-        case '<': t = CellType::ShortRowLeft; break;
-        case '>': t = CellType::ShortRowRight; break;
-        case 'I': t = CellType::Increase; break;
-        case 'D': t = CellType::Decrease; break;
-        case '.': t = CellType::Collapsed; break;
-        default: break;
-      }
-      m.at(r, c) = t;
-    }
-  }
-  return m;
-}
 
 int count(const KnittabilityReport& r, KnitRule rule) { return r.counts[static_cast<int>(rule)]; }
 

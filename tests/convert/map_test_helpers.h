@@ -40,6 +40,31 @@ inline KnittingMap parse_map(const std::vector<std::string>& top_first) {
   return m;
 }
 
+// A map drawn top row first with arrows for the short-row ends: K knit,
+// < short-row-left, > short-row-right, I increase, D decrease, . collapsed,
+// space empty. Directions alternate, row 0 (the last string) left to right.
+inline KnittingMap make_map(const std::vector<std::string>& top_first) {
+  const int rows = static_cast<int>(top_first.size()), cols = static_cast<int>(top_first[0].size());
+  KnittingMap m(rows, cols);
+  for (int r = 0; r < rows; ++r) {
+    const std::string& line = top_first[static_cast<size_t>(rows - 1 - r)];
+    for (int c = 0; c < cols; ++c) {
+      CellType t = CellType::Empty;
+      switch (line[static_cast<size_t>(c)]) {
+        case 'K': t = CellType::Knit; break;
+        case '<': t = CellType::ShortRowLeft; break;
+        case '>': t = CellType::ShortRowRight; break;
+        case 'I': t = CellType::Increase; break;
+        case 'D': t = CellType::Decrease; break;
+        case '.': t = CellType::Collapsed; break;
+        default: break;
+      }
+      m.at(r, c) = t;
+    }
+  }
+  return m;
+}
+
 inline std::string draw_map(const KnittingMap& m) {
   static const char kChars[] = "KLRID._";
   std::string out;

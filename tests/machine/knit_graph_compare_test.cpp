@@ -13,8 +13,10 @@
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/knitout_writer.h"
 #include "knitforge/machine/machine_profile.h"
+#include "convert/map_test_helpers.h"
 
 using namespace knitforge;
+using knitforge::test::make_map;
 
 namespace {
 
@@ -40,28 +42,6 @@ std::string join_lines(const std::vector<std::string>& lines) {
   return s;
 }
 
-// Map from strings, top row first; K < > I D . and space (Empty).
-KnittingMap make_map(const std::vector<std::string>& top_first) {
-  const int rows = static_cast<int>(top_first.size()), cols = static_cast<int>(top_first[0].size());
-  KnittingMap m(rows, cols);
-  for (int r = 0; r < rows; ++r) {
-    const std::string& line = top_first[static_cast<size_t>(rows - 1 - r)];
-    for (int c = 0; c < cols; ++c) {
-      CellType t = CellType::Empty;
-      switch (line[static_cast<size_t>(c)]) {
-        case 'K': t = CellType::Knit; break;
-        case '<': t = CellType::ShortRowLeft; break;
-        case '>': t = CellType::ShortRowRight; break;
-        case 'I': t = CellType::Increase; break;
-        case 'D': t = CellType::Decrease; break;
-        case '.': t = CellType::Collapsed; break;
-        default: break;
-      }
-      m.at(r, c) = t;
-    }
-  }
-  return m;
-}
 
 // The maps of the hand-written programs in tests/machine/data.
 KnittingMap wedge_map() { return make_map({"KKKKKK", "KKK>..", "KKK>..", "KKKKKK", "KKKKKK"}); }
