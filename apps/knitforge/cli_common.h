@@ -31,6 +31,10 @@ void add_yarn_command(CLI::App& app, Action& action);
 void add_simulate_command(CLI::App& app, Action& action);
 void add_knitout_command(CLI::App& app, Action& action);
 void add_instructions_command(CLI::App& app, Action& action);
+void add_flatten_command(CLI::App& app, Action& action);
+void add_render_command(CLI::App& app, Action& action);
+void add_shortrow_command(CLI::App& app, Action& action);
+void add_report_command(CLI::App& app, Action& action);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.

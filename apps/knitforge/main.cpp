@@ -28,6 +28,10 @@ int main(int argc, char** argv) {
   cli::add_simulate_command(app, action);
   cli::add_knitout_command(app, action);
   cli::add_instructions_command(app, action);
+  cli::add_flatten_command(app, action);
+  cli::add_render_command(app, action);
+  cli::add_shortrow_command(app, action);
+  cli::add_report_command(app, action);
 
   try {
     app.parse(argc, argv);

@@ -88,17 +88,27 @@ TEST(StitchMeshToMap, MeshMapMeshKeepsTheStitchSequence) {
 
 TEST(StitchMeshToMap, UnorderedShortColumnsFollowTheTieBreak) {
   // Columns 1 and 2 never share a course; the lower-starting one goes left.
-  const KnittingMap canonical = parse_map({"K.KK",
-                                           "K.IK",
-                                           "K..K",
-                                           "KD.K",
-                                           "KK.K"});
+  const KnittingMap canonical = parse_map({"K.KK", "K.IK", "K..K", "KD.K", "KK.K"});
   KnittingMap swapped = canonical;
   for (int r = 0; r < swapped.rows; ++r) std::swap(swapped.at(r, 1), swapped.at(r, 2));
-  const StitchMesh a = map_to_stitch_mesh_topology(canonical, kP);
-  const StitchMesh b = map_to_stitch_mesh_topology(swapped, kP);
+  StitchMesh a = map_to_stitch_mesh_topology(canonical, kP);
+  StitchMesh b = map_to_stitch_mesh_topology(swapped, kP);
+  // With the wale labels the mesh carries, each map comes back as it was laid out.
+  EXPECT_TRUE(stitch_mesh_to_map(a) == canonical);
+  EXPECT_TRUE(stitch_mesh_to_map(b) == swapped) << draw_map(stitch_mesh_to_map(b));
+  // Without labels the tie-break decides, the same way for both.
+  for (StitchMesh* m : {&a, &b}) {
+    for (Stitch& st : m->stitches) st.wale = -1;
+  }
   EXPECT_TRUE(stitch_mesh_to_map(a) == canonical);
   EXPECT_TRUE(stitch_mesh_to_map(b) == canonical) << draw_map(stitch_mesh_to_map(b));
+}
+
+TEST(StitchMeshToMap, WaleLabelsThatContradictTheMeshAreIgnored) {
+  const KnittingMap canonical = parse_map({"KKK", "KKK"});
+  StitchMesh m = map_to_stitch_mesh_topology(canonical, kP);
+  for (Stitch& st : m.stitches) st.wale = 5 - st.wale;  // Right neighbours would get smaller labels
+  EXPECT_TRUE(stitch_mesh_to_map(m) == canonical);
 }
 
 TEST(StitchMeshToMap, DirectionDisagreementNamesStitches) {

@@ -1,12 +1,12 @@
 // End-to-end tests of the knitforge program: exit codes, messages, outputs.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/core/knittability.h"
@@ -14,49 +14,11 @@
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 
+#include "e2e/cli_fixture.h"
+
 namespace fs = std::filesystem;
 using namespace knitforge;
-
-namespace {
-
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("knitforge_e2e_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  CliRun run(const std::string& args) {
-    const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
-    const std::string cmd = std::string(KNITFORGE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
-
-}  // namespace
+using namespace knitforge_e2e;
 
 TEST_F(Cli, HelpAndVersion) {
   CliRun r = run("--help");
@@ -107,7 +69,9 @@ TEST_F(Cli, ShapeWritesARealMesh) {
 }
 
 TEST_F(Cli, MapRelaxMapRoundTripAndCheck) {
-  ASSERT_EQ(run("sample-map cup -o " + path("cup.csv") + " -o " + path("cup.png") + " -o " + path("cup.svg")).code, 0);
+  ASSERT_EQ(
+      run("sample-map cup -o " + path("cup.csv") + " -o " + path("cup.png") + " -o " + path("cup.svg")).code,
+      0);
   EXPECT_GT(fs::file_size(path("cup.png")), 100u);
   EXPECT_NE(slurp(path("cup.svg")).find("<svg"), std::string::npos);
   CliRun c = run("check " + path("cup.csv"));
@@ -149,7 +113,8 @@ TEST_F(Cli, CheckSurface) {
   CliRun r = run("check " + path("d.ply"));
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   // Non-manifold: three triangles on one edge.
-  std::ofstream(path("nm.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  std::ofstream(path("nm.obj"))
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
   r = run("check " + path("nm.obj"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("nm.obj:"), std::string::npos) << r.err;

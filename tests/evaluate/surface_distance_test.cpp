@@ -27,8 +27,8 @@ TriMesh random_sheet(int n, uint32_t seed) {
       m.faces.push_back({a, c, d});
     }
   }
-  m.faces.push_back({0, 0, 5});     // a segment
-  m.faces.push_back({7, 7, 7});     // a point
+  m.faces.push_back({0, 0, 5});  // a segment
+  m.faces.push_back({7, 7, 7});  // a point
   return m;
 }
 
@@ -38,14 +38,15 @@ TEST(SurfaceDistance, MatchesBruteForce) {
   std::uniform_real_distribution<double> u(-5, 35), z(-6, 6);
   std::vector<Vec3> pts;
   for (int k = 0; k < 2000; ++k) pts.emplace_back(u(rng), u(rng), z(rng));
-  pts.push_back(m.vertices[17]);  // on the surface
+  pts.push_back(m.vertices[17]);    // on the surface
   pts.emplace_back(1e4, -3e3, 50);  // far away
-  const std::vector<SurfacePoint> cp = closest_points_on_surface(m, pts);
+  const std::vector<ClosestPoint> cp = closest_points_on_surface(m, pts);
   ASSERT_EQ(cp.size(), pts.size());
   for (size_t i = 0; i < pts.size(); ++i) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& f : m.faces) {
-      best = std::min(best, point_triangle_distance(pts[i], m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
+      best = std::min(best,
+                      point_triangle_distance(pts[i], m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
     }
     EXPECT_NEAR(cp[i].distance, best, 1e-12) << i;
     // The reported point lies on the reported face at the reported distance.

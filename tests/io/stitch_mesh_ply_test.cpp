@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "io/io_test_util.h"
 #include "knitforge/io/colours.h"
 #include "knitforge/io/ply.h"
+#include "knitforge/util/errors.h"
 
 namespace knitforge {
 namespace {
@@ -24,9 +26,10 @@ StitchMesh small_stitch_mesh() {
       m.vertices.emplace_back(3.5 * i + 1e-15 * (i + j), 2.8 * j / 3.0, std::exp(i - j) * 1e-300);
     }
   }
-  m.vertices.emplace_back(8.75, 1.4, -0.0);        // 9: apex right
-  m.vertices.emplace_back(-1.75, 1.4, 5e-324);     // 10: apex left (denormal z)
-  auto add = [&](StitchType t, int8_t dir, std::array<int, 4> v, int course, int wale, int yarn, uint8_t roles) {
+  m.vertices.emplace_back(8.75, 1.4, -0.0);     // 9: apex right
+  m.vertices.emplace_back(-1.75, 1.4, 5e-324);  // 10: apex left (denormal z)
+  auto add = [&](StitchType t, int8_t dir, std::array<int, 4> v, int course, int wale, int yarn,
+                 uint8_t roles) {
     Stitch s;
     s.type = t;
     s.direction = dir;
@@ -67,7 +70,7 @@ TEST(StitchMeshPly, BinaryAndAsciiRoundTripsAreBitExact) {
   TempDir dir;
   const StitchMesh mesh = small_stitch_mesh();
   write_stitch_mesh_ply(dir.path("b.ply"), mesh);
-  write_stitch_mesh_ply(dir.path("a.ply"), mesh, {.ascii = true});
+  write_stitch_mesh_ply(dir.path("a.ply"), mesh, {.ascii = true, .scalars = {}});
   EXPECT_CONTAINS(dir.read("b.ply"), "format binary_little_endian 1.0\n");
   EXPECT_CONTAINS(dir.read("a.ply"), "format ascii 1.0\n");
   for (const char* name : {"b.ply", "a.ply"}) {
@@ -81,13 +84,40 @@ TEST(StitchMeshPly, BinaryAndAsciiRoundTripsAreBitExact) {
   EXPECT_EQ(b.size() - b.find("end_header\n") - 11, 11u * 24 + 3u * 35 + 4u * 31);
 }
 
+TEST(StitchMeshPly, ExtraPerStitchScalarsAreWrittenAndIgnoredOnReading) {
+  TempDir dir;
+  const StitchMesh mesh = small_stitch_mesh();
+  StitchMeshPlyOptions o;
+  o.scalars.push_back({"shape_error", std::vector<double>(mesh.num_stitches(), 0.25)});
+  write_stitch_mesh_ply(dir.path("b.ply"), mesh, o);
+  const std::string b = dir.read("b.ply");
+  EXPECT_CONTAINS(b, "property float shape_error\nend_header\n");
+  // 4 more bytes per stitch than without the scalar.
+  EXPECT_EQ(b.size() - b.find("end_header\n") - 11, 11u * 24 + 3u * 39 + 4u * 35);
+  expect_identical(read_stitch_mesh_ply(dir.path("b.ply")), mesh);
+  o.ascii = true;
+  write_stitch_mesh_ply(dir.path("a.ply"), mesh, o);
+  EXPECT_CONTAINS(dir.read("a.ply"), " 0.25\n");
+  expect_identical(read_stitch_mesh_ply(dir.path("a.ply")), mesh);
+
+  StitchMeshPlyOptions bad;
+  bad.scalars.push_back({"type", std::vector<double>(mesh.num_stitches(), 0.0)});
+  EXPECT_THROW(write_stitch_mesh_ply(dir.path("c.ply"), mesh, bad), InvalidInput);
+  bad.scalars = {{"ok_name", std::vector<double>(2, 0.0)}};
+  EXPECT_THROW(write_stitch_mesh_ply(dir.path("c.ply"), mesh, bad), InvalidInput);
+  bad.scalars = {{"bad name", std::vector<double>(mesh.num_stitches(), 0.0)}};
+  EXPECT_THROW(write_stitch_mesh_ply(dir.path("c.ply"), mesh, bad), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(dir.path("c.ply")));
+}
+
 TEST(StitchMeshPly, HasThePropertiesAndColoursViewersUse) {
   TempDir dir;
-  write_stitch_mesh_ply(dir.path("a.ply"), small_stitch_mesh(), {.ascii = true});
+  write_stitch_mesh_ply(dir.path("a.ply"), small_stitch_mesh(), {.ascii = true, .scalars = {}});
   const std::string text = dir.read("a.ply");
-  EXPECT_CONTAINS(text, "element face 7\nproperty list uchar int vertex_indices\nproperty uchar type\n"
-                        "property char direction\nproperty int course\nproperty int wale\nproperty int yarn\n"
-                        "property uchar roles\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n");
+  EXPECT_CONTAINS(text,
+                  "element face 7\nproperty list uchar int vertex_indices\nproperty uchar type\n"
+                  "property char direction\nproperty int course\nproperty int wale\nproperty int yarn\n"
+                  "property uchar roles\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n");
   // The short-row-right stitch (type 2) line ends with its colour.
   const Rgb c = stitch_type_colour(StitchType::ShortRowRight);
   EXPECT_CONTAINS(text, "3 2 9 5 2 1 0 3 0 5 " + std::to_string(c.r) + " " + std::to_string(c.g) + " " +
@@ -116,7 +146,7 @@ std::string edit(const std::string& text, int n, int k, const std::string& value
 
 TEST(StitchMeshPly, MalformedFilesNameFileAndLine) {
   TempDir dir;
-  write_stitch_mesh_ply(dir.path("a.ply"), small_stitch_mesh(), {.ascii = true});
+  write_stitch_mesh_ply(dir.path("a.ply"), small_stitch_mesh(), {.ascii = true, .scalars = {}});
   const std::string good = dir.read("a.ply");
   // 19 header lines, vertices on lines 20-30, stitches on lines 31-37.
   struct Case {
@@ -154,7 +184,8 @@ TEST(StitchMeshPly, WriterRejectsInvalidStitches) {
   TempDir dir;
   StitchMesh m = small_stitch_mesh();
   m.stitches[2].direction = 0;
-  EXPECT_CONTAINS(test::invalid_input([&] { write_stitch_mesh_ply(dir.path("x.ply"), m); }), "stitch 2 has direction 0");
+  EXPECT_CONTAINS(test::invalid_input([&] { write_stitch_mesh_ply(dir.path("x.ply"), m); }),
+                  "stitch 2 has direction 0");
   m = small_stitch_mesh();
   m.stitches[4].v[3] = 1;
   EXPECT_CONTAINS(test::invalid_input([&] { write_stitch_mesh_ply(dir.path("x.ply"), m); }), "stitch 4");

@@ -1,6 +1,8 @@
 #include "knitforge/convert/stitch_mesh_to_map.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 #include <queue>
 #include <tuple>
@@ -32,7 +34,8 @@ std::vector<int> components(UnionFind& uf, int n, int* count) {
 // nodes (smallest first). Returns the position of each node, or an empty
 // vector when a cycle remains.
 template <typename Key>
-std::vector<int> topological_order(int n, const std::vector<std::pair<int, int>>& edges, const std::vector<Key>& key) {
+std::vector<int> topological_order(int n, const std::vector<std::pair<int, int>>& edges,
+                                   const std::vector<Key>& key) {
   std::vector<int> indeg(n, 0), start(n + 1, 0), adj(edges.size());
   for (const auto& e : edges) ++start[e.first + 1], ++indeg[e.second];
   for (int i = 0; i < n; ++i) start[i + 1] += start[i];
@@ -68,10 +71,12 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
       const Side side = static_cast<Side>(k);
       const int t = adj.neighbor(s, side);
       if (t >= 0 && adj.neighbor_side(s, side) != opposite_side(side)) {
-        throw InvalidInput(fmt::format(
-            "stitches {} and {} meet across side {} of stitch {} and side {} of stitch {}; neighbours must meet "
-            "across opposite sides (Right against Left, Top against Bottom): check their types and corner order",
-            s, t, k, s, static_cast<int>(adj.neighbor_side(s, side)), t));
+        throw InvalidInput(
+            fmt::format("stitches {} and {} meet across side {} of stitch {} and side {} of stitch {}; "
+                        "neighbours must meet "
+                        "across opposite sides (Right against Left, Top against Bottom): check their types "
+                        "and corner order",
+                        s, t, k, s, static_cast<int>(adj.neighbor_side(s, side)), t));
       }
     }
   }
@@ -94,27 +99,37 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
     const int t = adj.neighbor(s, Side::Top);
     if (t < 0) continue;
     if (row[s] == row[t]) {
-      throw InvalidInput(fmt::format("stitch {} and its Top neighbour {} lie in the same row: the rows form a helix "
-                                     "(a course that climbs into itself), which cannot be knitted",
-                                     s, t));
+      throw InvalidInput(
+          fmt::format("stitch {} and its Top neighbour {} lie in the same row: the rows form a helix "
+                      "(a course that climbs into itself), which cannot be knitted",
+                      s, t));
     }
     row_edges.emplace_back(row[s], row[t]);
   }
-  std::vector<int> row_min(nrows, n);
-  for (int s = 0; s < n; ++s) row_min[row[s]] = std::min(row_min[row[s]], s);
-  const std::vector<int> row_pos = topological_order(nrows, row_edges, row_min);
+  // Tie-break key per row: (smallest course label of its stitches, smallest
+  // stitch index); labels of -1 (unknown) sort as "no preference".
+  std::vector<std::pair<int, int>> row_key(nrows, {std::numeric_limits<int>::max(), n});
+  for (int s = 0; s < n; ++s) {
+    const int label =
+        mesh.stitches[s].course >= 0 ? mesh.stitches[s].course : std::numeric_limits<int>::max();
+    row_key[row[s]].first = std::min(row_key[row[s]].first, label);
+    row_key[row[s]].second = std::min(row_key[row[s]].second, s);
+  }
+  const std::vector<int> row_pos = topological_order(nrows, row_edges, row_key);
   if (row_pos.empty()) {
-    throw InvalidInput("stitch_mesh_to_map: the rows form a cycle (a course is both below and above another one); "
-                       "the mesh cannot be knitted bottom to top");
+    throw InvalidInput(
+        "stitch_mesh_to_map: the rows form a cycle (a course is both below and above another one); "
+        "the mesh cannot be knitted bottom to top");
   }
 
   for (int s = 0; s < n; ++s) {
     const int t = adj.neighbor(s, Side::Right);
     if (t < 0) continue;
     if (col[s] == col[t]) {
-      throw InvalidInput(fmt::format("stitch {} and its Right neighbour {} lie in the same column: the columns form "
-                                     "a helix, which cannot be knitted",
-                                     s, t));
+      throw InvalidInput(
+          fmt::format("stitch {} and its Right neighbour {} lie in the same column: the columns form "
+                      "a helix, which cannot be knitted",
+                      s, t));
     }
     col_edges.emplace_back(col[s], col[t]);
   }
@@ -125,8 +140,45 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
   }
   const std::vector<int> col_pos = topological_order(ncols, col_edges, col_key);
   if (col_pos.empty()) {
-    throw InvalidInput("stitch_mesh_to_map: the columns form a cycle (a wale is both left and right of another "
-                       "one), e.g. a tube; cut the mesh open along a wale");
+    throw InvalidInput(
+        "stitch_mesh_to_map: the columns form a cycle (a wale is both left and right of another "
+        "one), e.g. a tube; cut the mesh open along a wale");
+  }
+
+  // Per-stitch map cell. Wale labels, when every stitch has one and they agree
+  // with the mesh, give the columns directly (a design route can put
+  // vertically separate pieces of fabric, e.g. the two sides of a notch, in
+  // the same columns); otherwise the computed column order is used.
+  std::vector<int> srow(n), scol(n);
+  for (int s = 0; s < n; ++s) {
+    srow[s] = row_pos[row[s]];
+    scol[s] = col_pos[col[s]];
+  }
+  {
+    int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+    for (const Stitch& st : mesh.stitches) {
+      lo = std::min(lo, st.wale);
+      hi = std::max(hi, st.wale);
+    }
+    bool usable = lo >= 0 && static_cast<int64_t>(hi - lo + 1) * nrows <= int64_t{1} << 31;
+    for (int s = 0; usable && s < n; ++s) {
+      const int right = adj.neighbor(s, Side::Right), top = adj.neighbor(s, Side::Top);
+      if (right >= 0 && mesh.stitches[right].wale <= mesh.stitches[s].wale) usable = false;
+      if (top >= 0 && mesh.stitches[top].wale != mesh.stitches[s].wale) usable = false;
+    }
+    if (usable) {
+      const int w = hi - lo + 1;
+      std::vector<char> taken(static_cast<size_t>(w) * nrows, 0);
+      for (int s = 0; usable && s < n; ++s) {
+        char& t = taken[static_cast<size_t>(srow[s]) * w + (mesh.stitches[s].wale - lo)];
+        if (t) usable = false;
+        t = 1;
+      }
+    }
+    if (usable) {
+      ncols = hi - lo + 1;
+      for (int s = 0; s < n; ++s) scol[s] = mesh.stitches[s].wale - lo;
+    }
   }
 
   KnittingMap map(nrows, ncols, CellType::Empty);
@@ -134,12 +186,13 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
   std::vector<int> row_stitch(nrows, -1);
   for (int s = 0; s < n; ++s) {
     const Stitch& st = mesh.stitches[s];
-    const int r = row_pos[row[s]], c = col_pos[col[s]];
+    const int r = srow[s], c = scol[s];
     int& o = owner[static_cast<size_t>(r) * ncols + c];
     if (o >= 0) {
-      throw InvalidInput(fmt::format("stitches {} and {} both fall into map cell (row {}, column {}); the rows and "
-                                     "columns of the mesh are not consistent",
-                                     o, s, r, c));
+      throw InvalidInput(
+          fmt::format("stitches {} and {} both fall into map cell (row {}, column {}); the rows and "
+                      "columns of the mesh are not consistent",
+                      o, s, r, c));
     }
     o = s;
     int& rs = row_stitch[r];
@@ -147,10 +200,10 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
       rs = s;
       map.direction[r] = st.direction;
     } else if (mesh.stitches[rs].direction != st.direction) {
-      throw InvalidInput(fmt::format("stitches {} and {} lie in the same row (map row {}) but have directions {} and "
-                                     "{}; a row is knitted in one direction",
-                                     rs, s, r, static_cast<int>(mesh.stitches[rs].direction),
-                                     static_cast<int>(st.direction)));
+      throw InvalidInput(fmt::format(
+          "stitches {} and {} lie in the same row (map row {}) but have directions {} and "
+          "{}; a row is knitted in one direction",
+          rs, s, r, static_cast<int>(mesh.stitches[rs].direction), static_cast<int>(st.direction)));
     }
     map.at(r, c) = to_cell_type(st.type);
     if (st.yarn != 0) map.set_yarn(r, c, st.yarn);
@@ -158,21 +211,22 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
   auto collapse = [&](int r, int c, int s, int t) {
     CellType& cell = map.at(r, c);
     if (is_stitch(cell)) {
-      throw InvalidInput(fmt::format("stitch {} lies in map cell (row {}, column {}) between the neighbours {} and "
-                                     "{}; the rows and columns of the mesh are not consistent",
-                                     owner[static_cast<size_t>(r) * ncols + c], r, c, s, t));
+      throw InvalidInput(
+          fmt::format("stitch {} lies in map cell (row {}, column {}) between the neighbours {} and "
+                      "{}; the rows and columns of the mesh are not consistent",
+                      owner[static_cast<size_t>(r) * ncols + c], r, c, s, t));
     }
     cell = CellType::Collapsed;
   };
   for (int s = 0; s < n; ++s) {
-    const int r = row_pos[row[s]], c = col_pos[col[s]];
+    const int r = srow[s], c = scol[s];
     const int right = adj.neighbor(s, Side::Right);
     if (right >= 0) {
-      for (int cc = c + 1; cc < col_pos[col[right]]; ++cc) collapse(r, cc, s, right);
+      for (int cc = c + 1; cc < scol[right]; ++cc) collapse(r, cc, s, right);
     }
     const int top = adj.neighbor(s, Side::Top);
     if (top >= 0) {
-      for (int rr = r + 1; rr < row_pos[row[top]]; ++rr) collapse(rr, c, s, top);
+      for (int rr = r + 1; rr < srow[top]; ++rr) collapse(rr, c, s, top);
     }
   }
   return map;

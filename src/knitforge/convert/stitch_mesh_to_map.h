@@ -6,10 +6,16 @@
 /// columns those joined across Bottom/Top sides. Rows are ordered by a
 /// topological sort of "the Bottom neighbour's row is knitted before the Top
 /// neighbour's row" (ties, which a knittable mesh never has, go to the row
-/// with the smallest stitch index); columns by "the Left neighbour's column
+/// with the smallest Stitch::course label, then the smallest stitch index, so
+/// a design route that ordered its courses keeps that order); columns by "the Left neighbour's column
 /// is left of the Right neighbour's column", ties broken by Kahn's algorithm
 /// taking, among the ready columns, the one whose lowest stitch has the
-/// smallest row, then the smallest stitch index. Each stitch fills the cell
+/// smallest row, then the smallest stitch index. When every stitch carries a
+/// wale label (Stitch::wale >= 0) and the labels agree with the mesh (a Right
+/// neighbour has a larger label, a Top neighbour the same, no two stitches of
+/// a row share one), the labels are the columns instead: a design route can
+/// then place pieces of fabric that are separated vertically (the two sides
+/// of a notch in the boundary) in the same columns. Each stitch fills the cell
 /// (row, column) with its type and yarn; cells between two mesh neighbours
 /// that are not grid neighbours become Collapsed, all other cells Empty. The
 /// row direction is the direction of its stitches. The result is canonical:

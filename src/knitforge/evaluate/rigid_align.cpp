@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/SVD>
 #include <fmt/core.h>
+#include <Eigen/SVD>
 
 #include "knitforge/util/errors.h"
 
@@ -15,8 +15,8 @@ namespace {
 void check_weights(std::span<const double> weights, size_t n, const char* what) {
   if (weights.empty()) return;
   if (weights.size() != n) {
-    throw InvalidInput(fmt::format("{}: {} weights for {} points (give one per point, or none)", what,
-                                   weights.size(), n));
+    throw InvalidInput(
+        fmt::format("{}: {} weights for {} points (give one per point, or none)", what, weights.size(), n));
   }
   double total = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -36,11 +36,13 @@ void check_points(std::span<const Vec3> pts, const char* what, const char* name)
 
 }  // namespace
 
-RigidTransform rigid_align(std::span<const Vec3> from, std::span<const Vec3> to, std::span<const double> weights) {
+RigidTransform rigid_align(std::span<const Vec3> from, std::span<const Vec3> to,
+                           std::span<const double> weights) {
   constexpr const char* kWhat = "rigid_align";
   if (from.empty()) throw InvalidInput("rigid_align: no points");
   if (from.size() != to.size()) {
-    throw InvalidInput(fmt::format("rigid_align: {} source points but {} target points", from.size(), to.size()));
+    throw InvalidInput(
+        fmt::format("rigid_align: {} source points but {} target points", from.size(), to.size()));
   }
   check_points(from, kWhat, "source");
   check_points(to, kWhat, "target");
@@ -75,8 +77,9 @@ IcpResult align_to_surface(std::span<const Vec3> points, const TriMesh& target, 
   return align_to_surface(points, SurfaceBvh(target), initial, options, weights);
 }
 
-IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& target, const RigidTransform& initial,
-                           const IcpOptions& options, std::span<const double> weights) {
+IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& target,
+                           const RigidTransform& initial, const IcpOptions& options,
+                           std::span<const double> weights) {
   constexpr const char* kWhat = "align_to_surface";
   if (points.empty()) throw InvalidInput("align_to_surface: no points");
   if (options.max_iterations < 0 || !(options.tolerance >= 0)) {
@@ -99,7 +102,7 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     double sum = 0;
     for (size_t i = 0; i < n; ++i) {
       const Vec3 x = T.apply(points[i]);
-      const SurfacePoint sp = target.closest_point(x);
+      const ClosestPoint sp = target.closest_point(x);
       c[i] = sp.point;
       // The gradient of the distance (exact also on edges and vertices);
       // the face normal for points on the surface.

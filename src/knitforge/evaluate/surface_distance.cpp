@@ -35,11 +35,12 @@ SurfaceBvh::SurfaceBvh(const TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.faces[f][k];
       if (v < 0 || v >= nv) {
-        throw InvalidInput(fmt::format("surface distance: face {} corner {} is vertex {} (valid: 0..{})", f, k, v,
-                                       nv - 1));
+        throw InvalidInput(
+            fmt::format("surface distance: face {} corner {} is vertex {} (valid: 0..{})", f, k, v, nv - 1));
       }
       if (!mesh.vertices[v].allFinite()) {
-        throw InvalidInput(fmt::format("surface distance: vertex {} of face {} has a non-finite position", v, f));
+        throw InvalidInput(
+            fmt::format("surface distance: vertex {} of face {} has a non-finite position", v, f));
       }
     }
   }
@@ -105,9 +106,9 @@ int SurfaceBvh::build(int first, int count, std::vector<Vec3>& centroids) {
   return id;
 }
 
-SurfacePoint SurfaceBvh::closest_point(const Vec3& p) const {
+ClosestPoint SurfaceBvh::closest_point(const Vec3& p) const {
   if (!p.allFinite()) throw InvalidInput("surface distance: the query point is not finite");
-  SurfacePoint best;
+  ClosestPoint best;
   double best2 = std::numeric_limits<double>::infinity();
   int best_slot_face = std::numeric_limits<int>::max();
   int best_slot = 0;
@@ -147,20 +148,20 @@ SurfacePoint SurfaceBvh::closest_point(const Vec3& p) const {
   return best;
 }
 
-std::vector<SurfacePoint> closest_points_on_surface(const TriMesh& surface, std::span<const Vec3> points) {
+std::vector<ClosestPoint> closest_points_on_surface(const TriMesh& surface, std::span<const Vec3> points) {
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) {
       throw InvalidInput(fmt::format("surface distance: query point {} is not finite", i));
     }
   }
   const SurfaceBvh bvh(surface);
-  std::vector<SurfacePoint> out(points.size());
+  std::vector<ClosestPoint> out(points.size());
   for (size_t i = 0; i < points.size(); ++i) out[i] = bvh.closest_point(points[i]);
   return out;
 }
 
 std::vector<double> distances_to_surface(const TriMesh& surface, std::span<const Vec3> points) {
-  const std::vector<SurfacePoint> cp = closest_points_on_surface(surface, points);
+  const std::vector<ClosestPoint> cp = closest_points_on_surface(surface, points);
   std::vector<double> out(cp.size());
   for (size_t i = 0; i < cp.size(); ++i) out[i] = cp[i].distance;
   return out;

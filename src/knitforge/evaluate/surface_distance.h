@@ -24,10 +24,10 @@
 namespace knitforge {
 
 /// The closest point of a surface to a query point.
-struct SurfacePoint {
-  Vec3 point = Vec3::Zero();  ///< closest point on the surface (mm)
-  int face = -1;              ///< face that holds it (smallest index on ties within a leaf)
-  double distance = 0.0;      ///< Euclidean distance query -> point (mm)
+struct ClosestPoint {
+  Vec3 point = Vec3::Zero();   ///< closest point on the surface (mm)
+  int face = -1;               ///< face that holds it (smallest index on ties within a leaf)
+  double distance = 0.0;       ///< Euclidean distance query -> point (mm)
   Vec3 normal = Vec3::Zero();  ///< unit normal of `face` (zero if degenerate)
 };
 
@@ -45,28 +45,28 @@ class SurfaceBvh {
   /// Closest point of the surface to p. Degenerate faces count as the
   /// segments / points they collapse to.
   /// \throw InvalidInput when p is not finite.
-  SurfacePoint closest_point(const Vec3& p) const;
+  ClosestPoint closest_point(const Vec3& p) const;
 
   int num_faces() const { return static_cast<int>(face_ids_.size()); }
 
  private:
   struct Node {
     Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-    int left = -1;   ///< child index, or -1 for a leaf
+    int left = -1;  ///< child index, or -1 for a leaf
     int right = -1;
-    int first = 0;   ///< leaf: first slot in face_ids_ / tri_
-    int count = 0;   ///< leaf: number of faces
+    int first = 0;  ///< leaf: first slot in face_ids_ / tri_
+    int count = 0;  ///< leaf: number of faces
   };
   int build(int first, int count, std::vector<Vec3>& centroids);
   std::vector<Node> nodes_;
-  std::vector<int> face_ids_;                  ///< original face index per slot
-  std::vector<std::array<Vec3, 3>> tri_;       ///< triangle corners per slot
-  std::vector<Vec3> normal_;                   ///< unit face normal per slot
+  std::vector<int> face_ids_;             ///< original face index per slot
+  std::vector<std::array<Vec3, 3>> tri_;  ///< triangle corners per slot
+  std::vector<Vec3> normal_;              ///< unit face normal per slot
 };
 
 /// Closest surface points for many query points (one SurfaceBvh, built once).
 /// \throw InvalidInput as SurfaceBvh, or for a non-finite query point (naming it).
-std::vector<SurfacePoint> closest_points_on_surface(const TriMesh& surface, std::span<const Vec3> points);
+std::vector<ClosestPoint> closest_points_on_surface(const TriMesh& surface, std::span<const Vec3> points);
 
 /// Distances (mm) from each point to the surface.
 /// \throw as closest_points_on_surface().

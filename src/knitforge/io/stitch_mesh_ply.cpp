@@ -1,6 +1,9 @@
 #include "knitforge/io/stitch_mesh_ply.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <ostream>
 
@@ -38,10 +41,10 @@ void check_for_writing(const std::string& path, const StitchMesh& mesh) {
     for (int k = 0; k < 4; ++k) {
       const int v = st.v[k];
       if (k < st.corners() ? (v < 0 || v >= mesh.num_vertices()) : v != -1) {
-        throw InvalidInput(fmt::format("{}: stitch {} ({}) has corner {} = {}; a {} stitch has {} corners "
-                                       "in [0, {}) and -1 after them",
-                                       path, s, name(st.type), k, v, name(st.type), st.corners(),
-                                       mesh.num_vertices()));
+        throw InvalidInput(
+            fmt::format("{}: stitch {} ({}) has corner {} = {}; a {} stitch has {} corners "
+                        "in [0, {}) and -1 after them",
+                        path, s, name(st.type), k, v, name(st.type), st.corners(), mesh.num_vertices()));
       }
     }
   }
@@ -71,6 +74,26 @@ void write_stitch_mesh_ply(const std::string& path, const StitchMesh& mesh,
   w.header_line("property uchar red");
   w.header_line("property uchar green");
   w.header_line("property uchar blue");
+  for (const StitchScalar& sc : options.scalars) {
+    const bool good_name = !sc.name.empty() && std::all_of(sc.name.begin(), sc.name.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+    });
+    static const char* const kStandard[] = {"vertex_indices", "type",  "direction", "course", "wale",
+                                            "yarn",           "roles", "red",       "green",  "blue"};
+    const bool standard =
+        std::any_of(std::begin(kStandard), std::end(kStandard), [&](const char* n) { return sc.name == n; });
+    if (!good_name || standard) {
+      throw InvalidInput(
+          fmt::format("{}: per-stitch property name '{}' must be letters, digits and '_' and not a "
+                      "standard stitch property",
+                      path, sc.name));
+    }
+    if (static_cast<int>(sc.values.size()) != mesh.num_stitches()) {
+      throw InvalidInput(fmt::format("{}: per-stitch property '{}' has {} values for {} stitches", path,
+                                     sc.name, sc.values.size(), mesh.num_stitches()));
+    }
+    w.header_line("property float " + sc.name);
+  }
   w.header_line("end_header");
   for (const Vec3& p : mesh.vertices) {
     for (int k = 0; k < 3; ++k) w.value(PlyType::Float64, p[k]);
@@ -89,6 +112,8 @@ void write_stitch_mesh_ply(const std::string& path, const StitchMesh& mesh,
     w.value(PlyType::UInt8, c.r);
     w.value(PlyType::UInt8, c.g);
     w.value(PlyType::UInt8, c.b);
+    for (const StitchScalar& sc : options.scalars)
+      w.value(PlyType::Float32, sc.values[&s - mesh.stitches.data()]);
     w.end_record();
   }
   write_file_atomically(
@@ -137,8 +162,8 @@ StitchMesh read_stitch_mesh_ply(const std::string& path) {
   auto as_int = [&](const PlyRecord& rec, int p, const char* what, double lo, double hi) {
     const double v = rec.values[p];
     if (!(v >= lo && v <= hi) || v != std::floor(v)) {
-      fail(rec.loc, fmt::format("stitch {}: {} {} is not an integer in [{}, {}]", mesh.stitches.size(), what, v,
-                                lo, hi));
+      fail(rec.loc, fmt::format("stitch {}: {} {} is not an integer in [{}, {}]", mesh.stitches.size(), what,
+                                v, lo, hi));
     }
     return static_cast<int>(v);
   };
@@ -163,8 +188,8 @@ StitchMesh read_stitch_mesh_ply(const std::string& path) {
     s.direction = static_cast<int8_t>(d);
     const auto& items = rec.lists[pv];
     if (static_cast<int>(items.size()) != s.corners()) {
-      fail(rec.loc, fmt::format("stitch {} is a {} stitch with {} corners; this type has {}", mesh.stitches.size(),
-                                name(s.type), items.size(), s.corners()));
+      fail(rec.loc, fmt::format("stitch {} is a {} stitch with {} corners; this type has {}",
+                                mesh.stitches.size(), name(s.type), items.size(), s.corners()));
     }
     for (size_t k = 0; k < items.size(); ++k) {
       const double v = items[k];

@@ -14,21 +14,33 @@
 ///                   (stitch_type_colour(), for viewers; ignored on reading).
 
 #include <string>
+#include <vector>
 
 #include "knitforge/core/stitch_mesh.h"
 
 namespace knitforge {
 
+/// A named per-stitch value written as an extra face property (float),
+/// e.g. "shape_error" or "distortion"; viewers (report.html) colour by it.
+/// The reader ignores such properties.
+struct StitchScalar {
+  std::string name;            ///< property name: letters, digits, '_'
+  std::vector<double> values;  ///< one per stitch
+};
+
 struct StitchMeshPlyOptions {
   /// Text PLY instead of binary little endian. Both are lossless (ascii
   /// writes the shortest decimal that reads back to the same double).
   bool ascii = false;
+  /// Extra per-stitch properties, written after the standard ones.
+  std::vector<StitchScalar> scalars;
 };
 
 /// Writes `mesh` to `path` (atomically).
 /// \throw InvalidInput when a coordinate is not finite, a stitch has an
 ///        unknown type, a direction other than +1/-1, or corner indices that
-///        do not match its type or are out of range.
+///        do not match its type or are out of range; when a scalar has a bad
+///        name, a standard property's name, or not one value per stitch.
 /// \throw IOError when the file cannot be written.
 void write_stitch_mesh_ply(const std::string& path, const StitchMesh& mesh,
                            const StitchMeshPlyOptions& options = {});

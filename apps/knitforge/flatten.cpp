@@ -1,0 +1,301 @@
+// knitforge flatten: 3D surface -> 2D pattern with darts -> knitting map
+// (seed ch. 2). Parses options, calls the library, writes the files.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.h"
+#include "knitforge/core/stitch.h"
+#include "knitforge/design/flatten/dart_hints.h"
+#include "knitforge/design/flatten/dart_json.h"
+#include "knitforge/design/flatten/flatten_surface.h"
+#include "knitforge/design/flatten/knit_flattened_pattern.h"
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/geometry/surface_checks.h"
+#include "knitforge/io/knittability_json.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/report_html.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/util/atomic_file.h"
+#include "knitforge/util/timer.h"
+
+namespace knitforge::cli {
+
+namespace {
+
+nlohmann::json distortion_json(const DistortionStats& s) {
+  return {{"min_log_sigma", s.min_log_sigma},   {"max_log_sigma", s.max_log_sigma},
+          {"mean_log_sigma", s.mean_log_sigma}, {"rms_log_sigma", s.rms_log_sigma},
+          {"area_3d_mm2", s.area_3d},           {"area_2d_mm2", s.area_2d},
+          {"flipped_faces", s.flipped_faces}};
+}
+
+nlohmann::json scalar_json(const ScalarStats& s) {
+  return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
+          {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError(fmt::format("{}: cannot open the darts file", path));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+void add_flatten_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand(
+      "flatten", "3D surface -> flattened 2D pattern with darts -> knittable knitting map (seed ch. 2)");
+  struct Opts {
+    std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts;
+    int auto_darts = 0;
+    double edge = kDefaultShapeEdgeLength;
+    bool allow_wide = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+  };
+  auto o = std::make_shared<Opts>();
+  std::string names;
+  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  cmd->add_option("input", o->input,
+                  "Surface mesh (.obj/.ply/.off/.stl), a disk, or a built-in shape: " + names)
+      ->required();
+  cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
+  add_stitch_option(*cmd, o->stitch);
+  cmd->add_option("--units", o->units, "Units of the input mesh and of dart positions: mm, cm, m");
+  cmd->add_option("--darts", o->darts, "Darts to cut, as JSON (see docs/flatten.md)");
+  cmd->add_option("--auto-darts", o->auto_darts,
+                  "Add up to N darts where the distortion is worst, while it goes down")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--allow-wide-darts", o->allow_wide,
+                "Accept darts wider than the knittable angle (report them instead of failing)");
+  cmd->add_flag("--no-long-rows", o->no_long_rows, "Do not add long rows at the bottom / top of the map");
+  cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  cmd->add_flag("--json", o->json, "Print report.json on stdout");
+  cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
+  cmd->callback([=, &action] {
+    action = [=]() -> int {
+      Timer all;
+      const KnitParams params = parse_stitch_size(o->stitch);
+      const double scale = unit_scale(o->units);
+      Timer t;
+      TriMesh surface;
+      std::string description = o->input;
+      bool builtin = false;
+      if (!std::filesystem::is_regular_file(o->input)) {
+        for (const auto& n : shape_names()) builtin = builtin || n == o->input;
+        if (!builtin) {
+          throw InvalidInput(
+              fmt::format("flatten: '{}' is neither a mesh file nor a built-in shape ({})", o->input, names));
+        }
+        surface = make_shape(o->input, o->edge);
+        description = "built-in " + o->input;
+      } else {
+        surface = load_surface(o->input, o->units);
+      }
+      require_disk(surface, description);
+      std::vector<DartSpec> darts;
+      if (!o->darts.empty()) darts = parse_darts_json(read_text(o->darts), o->darts, builtin ? 1.0 : scale);
+      const double load_seconds = t.seconds();
+
+      FlattenOptions fo;
+      fo.stitch_width = params.stitch_width;
+      fo.stitch_height = params.stitch_height;
+      fo.enforce_dart_angle = !o->allow_wide;
+      note("flattening without darts ...");
+      t.reset();
+      Flattening plain = flatten_surface(surface, {}, fo);
+      const double plain_seconds = t.seconds();
+      nlohmann::json sequence = nlohmann::json::array();
+      sequence.push_back({{"darts", 0}, {"distortion", distortion_json(plain.stats)}});
+      t.reset();
+      Flattening flat;
+      std::vector<DartHint> added;
+      std::string auto_stop;
+      std::vector<DartSpec> all_darts = darts;
+      if (!darts.empty() || o->auto_darts > 0) {
+        note(fmt::format("flattening with {} dart(s){} ...", darts.size(),
+                         o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
+        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo);
+        flat = std::move(a.flattening);
+        added = std::move(a.added);
+        auto_stop = a.stop_reason;
+        all_darts = a.darts;
+        for (size_t k = 0; k < a.rms_sequence.size(); ++k) {
+          const size_t n = darts.size() + k;
+          if (n == 0) continue;
+          sequence.push_back({{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}});
+        }
+        sequence.back()["distortion"] = distortion_json(flat.stats);
+      } else {
+        flat = std::move(plain);
+      }
+      const double darts_seconds = t.seconds();
+
+      note("rasterising the pattern and checking the map ...");
+      KnitPatternOptions ko;
+      ko.raster.long_rows = !o->no_long_rows;
+      ko.evaluate = !o->no_evaluate;
+      const KnitPatternResult k = knit_flattened_pattern(flat, surface, params, ko);
+
+      note("writing outputs ...");
+      t.reset();
+      const std::filesystem::path dir(o->outdir);
+      std::filesystem::create_directories(dir);
+      auto out = [&](const char* name) { return (dir / name).string(); };
+      std::vector<Vec2> marks;
+      for (const auto& d : flat.darts) {
+        marks.push_back(flat.uv[d.notch_a]);
+        marks.push_back(flat.uv[d.notch_b]);
+      }
+      const std::string svg = pattern_svg(flat.mesh, flat.uv, flat.distortion, marks);
+      write_file_atomically(out("pattern.svg"), [&](std::ostream& os) { os << svg; });
+      MeshWriteOptions coloured;
+      coloured.ascii = o->ascii;
+      for (const Rgb8& c : distortion_colours(flat.distortion))
+        coloured.face_colours.push_back({c[0], c[1], c[2]});
+      write_mesh(out("distortion.ply"), flat.mesh, coloured);
+      TriMesh pattern;
+      pattern.faces = flat.mesh.faces;
+      for (const auto& p : flat.uv) pattern.vertices.emplace_back(p.x(), p.y(), 0.0);
+      write_mesh(out("flattened.obj"), pattern);
+      write_map_by_extension(out("knitting_map.csv"), k.raster.map);
+      write_map_by_extension(out("knitting_map.png"), k.raster.map);
+      write_map_by_extension(out("knitting_map.svg"), k.raster.map);
+      MeshWriteOptions plain_ply;
+      plain_ply.ascii = o->ascii;
+      write_mesh(out("target.ply"), surface, plain_ply);
+      const std::string darts_text = darts_to_json(all_darts, builtin ? 1.0 : scale);
+      write_file_atomically(out("darts.json"), [&](std::ostream& os) { os << darts_text; });
+      if (k.knittability.ok()) {
+        StitchMeshPlyOptions ply;
+        ply.ascii = o->ascii;
+        write_stitch_mesh_ply(out("stitch_mesh.ply"), k.designed, ply);
+      }
+
+      nlohmann::json report;
+      report["input"] = {{"surface", description},
+                         {"units", builtin ? std::string("mm") : o->units},
+                         {"vertices", surface.num_vertices()},
+                         {"faces", surface.num_faces()},
+                         {"area_mm2", total_area(surface)}};
+      report["parameters"] = {{"stitch_width_mm", params.stitch_width},
+                              {"stitch_height_mm", params.stitch_height},
+                              {"darts_file", o->darts},
+                              {"auto_darts", o->auto_darts},
+                              {"allow_wide_darts", o->allow_wide},
+                              {"long_rows", !o->no_long_rows},
+                              {"arap_tolerance", fo.tolerance},
+                              {"arap_max_iterations", fo.max_iterations}};
+      report["flattening"] = {{"vertices", flat.mesh.num_vertices()},
+                              {"faces", flat.mesh.num_faces()},
+                              {"iterations", flat.iterations},
+                              {"converged", flat.converged},
+                              {"relative_energy", flat.relative_energy},
+                              {"flipped_faces", flat.flipped_faces},
+                              {"distortion_before_darts", sequence.front()["distortion"]},
+                              {"distortion", distortion_json(flat.stats)},
+                              {"distortion_sequence", sequence}};
+      nlohmann::json dl = nlohmann::json::array();
+      for (size_t i = 0; i < flat.darts.size(); ++i) {
+        const DartResult& d = flat.darts[i];
+        nlohmann::json tips = nlohmann::json::array();
+        for (int v : d.tips)
+          tips.push_back({flat.mesh.vertices[v].x(), flat.mesh.vertices[v].y(), flat.mesh.vertices[v].z()});
+        nlohmann::json j = {{"type", std::string(to_string(d.type))},
+                            {"orientation", std::string(to_string(d.orientation))},
+                            {"automatic", i >= darts.size()},
+                            {"length_mm", d.length},
+                            {"angle_deg", d.angle_deg},
+                            {"angle_limit_deg", d.angle_limit_deg},
+                            {"angle_ok", d.angle_ok},
+                            {"alignment_error_mm", d.alignment_error},
+                            {"notches_2d",
+                             {{flat.uv[d.notch_a].x(), flat.uv[d.notch_a].y()},
+                              {flat.uv[d.notch_b].x(), flat.uv[d.notch_b].y()}}},
+                            {"tips_3d", tips}};
+        if (i >= darts.size() && i - darts.size() < added.size())
+          j["reason"] = added[i - darts.size()].reason;
+        dl.push_back(j);
+      }
+      report["darts"] = dl;
+      if (o->auto_darts > 0) report["auto_darts_stop_reason"] = auto_stop;
+      const auto& r = k.raster;
+      report["map"] = {{"rows", r.map.rows},
+                       {"cols", r.map.cols},
+                       {"stitches", r.map.num_stitches()},
+                       {"origin_mm", {r.origin.x(), r.origin.y()}},
+                       {"bitmap_rows", r.bitmap_rows},
+                       {"pattern_cells", r.pattern_cells},
+                       {"added_long_rows", r.added_long_rows},
+                       {"extended_cells", r.extended_cells},
+                       {"filled_gap_cells", r.filled_gap_cells},
+                       {"shifted_turns", r.shifted_turns}};
+      std::array<int, 7> cells{};
+      for (CellType c : r.map.cells) ++cells[static_cast<int>(c)];
+      report["map"]["cells"] = {
+          {"knit", cells[0]},     {"short_row_left", cells[1]}, {"short_row_right", cells[2]},
+          {"increase", cells[3]}, {"decrease", cells[4]},       {"collapsed", cells[5]},
+          {"empty", cells[6]}};
+      report["knittability"] = to_json(k.knittability);
+      report["knittable"] = k.knittability.ok();
+      if (k.evaluation) {
+        const StitchMeshEvaluation& ev = *k.evaluation;
+        report["evaluation"] = {
+            {"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
+            {"shape_error_relative", {{"rms", ev.relative_rms_error}, {"max", ev.relative_max_error}}},
+            {"part_size_mm", ev.target_size},
+            {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
+            {"relaxation", {{"iterations", ev.relax_iterations}, {"converged", ev.relax_converged}}},
+            {"stitch_error_mm", scalar_json(ev.stitch_error_stats)},
+            {"stitch_distortion_designed", scalar_json(ev.designed_distortion_stats)},
+            {"stitch_distortion_relaxed", scalar_json(ev.relaxed_distortion_stats)}};
+      }
+      report["seconds"] = {{"load", load_seconds},
+                           {"flatten_without_darts", plain_seconds},
+                           {"flatten_with_darts", darts_seconds},
+                           {"cut_darts", flat.seconds_cut},
+                           {"rasterize", k.seconds.rasterize},
+                           {"knittability", k.seconds.check},
+                           {"lift", k.seconds.lift},
+                           {"evaluation", k.seconds.evaluate},
+                           {"output", t.seconds()}};
+      report["seconds"]["total"] = all.seconds();
+      const std::string text = report.dump(2) + "\n";
+      write_file_atomically(out("report.json"), [&](std::ostream& os) { os << text; });
+      if (o->json) std::fputs(text.c_str(), stdout);
+      write_report_html(o->outdir);
+
+      note(fmt::format(
+          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}; map {} rows x {} columns, "
+          "{} stitches; {:.2f} s -> {}",
+          flat.darts.size(), sequence.front()["distortion"]["rms_log_sigma"].get<double>(),
+          flat.stats.rms_log_sigma, r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+      if (!flat.flipped_faces.empty()) {
+        note(fmt::format("{} face(s) are flipped in the pattern (listed in report.json); more darts may help",
+                         flat.flipped_faces.size()));
+      }
+      if (k.evaluation) {
+        note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
+                         k.evaluation->rms_error, k.evaluation->max_error,
+                         100 * k.evaluation->relative_rms_error, 100 * k.evaluation->relative_max_error));
+      }
+      if (!k.knittability.ok()) {
+        std::fprintf(stderr, "%s", k.knittability.text().c_str());
+        note("the map is NOT knittable (details in report.json); outputs were written for inspection");
+        return 1;
+      }
+      note("knittable: the map passes every check");
+      return 0;
+    };
+  });
+}
+
+}  // namespace knitforge::cli

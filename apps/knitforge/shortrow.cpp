@@ -1,0 +1,371 @@
+// knitforge shortrow: 3D surface -> short-row stitch mesh and knitting map
+// (seed §3.2), with evaluation and a report.
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.h"
+#include "knitforge/convert/stitch_mesh_to_yarn.h"
+#include "knitforge/core/stitch.h"
+#include "knitforge/design/shortrow/design_short_rows.h"
+#include "knitforge/evaluate/scalar_colours.h"
+#include "knitforge/evaluate/scalar_stats.h"
+#include "knitforge/geometry/cut_mesh_along_path.h"
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/geometry/split_mesh_along_path.h"
+#include "knitforge/geometry/surface_checks.h"
+#include "knitforge/io/knittability_json.h"
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/knitting_map_image.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/report_html.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/util/atomic_file.h"
+#include "knitforge/util/timer.h"
+
+namespace knitforge::cli {
+
+namespace {
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InvalidInput(fmt::format("--source {}: '{}' is not a number", what, item));
+    }
+  }
+  return out;
+}
+
+/// The surface: a built-in shape name or a mesh file (scaled to mm).
+TriMesh load_input(const std::string& input, const std::string& units, std::string& description) {
+  for (const auto& n : shape_names()) {
+    if (n == input && !std::filesystem::exists(input)) {
+      description = "built-in " + n;
+      return make_shape(n);
+    }
+  }
+  description = input;
+  return load_surface(input, units);
+}
+
+/// --source TEXT (coordinates in the input's units, scaled by `scale`).
+GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
+  if (text.empty()) {
+    const BoundingBox box = bounding_box(mesh);
+    const double cx = 0.5 * (box.min.x() + box.max.x());
+    GeodesicSource s = source_from_plane(mesh, Vec3(1, 0, 0), cx);
+    return s;
+  }
+  const size_t colon = text.find(':');
+  const std::string kind = text.substr(0, colon);
+  const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (kind == "plane") {
+    const auto v = parse_numbers(args, "plane");
+    if (v.size() != 4) throw InvalidInput("--source plane:NX,NY,NZ,D takes four numbers (normal and offset)");
+    return source_from_plane(mesh, Vec3(v[0], v[1], v[2]), v[3] * scale);
+  }
+  if (kind == "boundary") {
+    const auto v = parse_numbers(args, "boundary");
+    if (v.size() != 2 && v.size() != 3) {
+      throw InvalidInput(
+          "--source boundary:BEGIN,END[,LOOP] takes arc-length fractions in [0, 1] (and a loop index)");
+    }
+    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? static_cast<int>(v[2]) : 0);
+  }
+  if (kind == "boundary-vertices" || kind == "vertex") {
+    std::vector<int> ids;
+    for (double x : parse_numbers(args, kind)) ids.push_back(static_cast<int>(x));
+    if (kind == "vertex") {
+      if (ids.size() != 1) throw InvalidInput("--source vertex:ID takes one vertex index");
+      return source_from_vertex(mesh, ids[0]);
+    }
+    return source_from_boundary_vertices(mesh, ids);
+  }
+  if (kind == "polyline") {
+    const auto lines = read_polylines_obj(args);
+    if (lines.empty()) throw InvalidInput(args + ": no polyline (l element) in the file");
+    std::vector<Vec3> pts = lines.front().points;
+    for (Vec3& p : pts) p *= scale;
+    return source_from_polyline(mesh, pts);
+  }
+  throw InvalidInput(
+      fmt::format("--source '{}': unknown kind '{}'; use plane:NX,NY,NZ,D, boundary:BEGIN,END[,LOOP], "
+                  "boundary-vertices:I,J,..., vertex:I or polyline:FILE.obj",
+                  text, kind));
+}
+
+/// Cuts the surface open along a polyline given in an OBJ file (--cut).
+TriMesh cut_surface(const TriMesh& mesh, const std::string& path, double scale, int& cut_edges) {
+  const auto lines = read_polylines_obj(path);
+  if (lines.empty()) throw InvalidInput(path + ": no polyline (l element) to cut along");
+  TriMesh out = mesh;
+  for (const auto& line : lines) {
+    std::vector<Vec3> pts = line.points;
+    for (Vec3& p : pts) p *= scale;
+    const GeodesicSource on_surface = source_from_polyline(out, pts);
+    std::vector<MeshPoint> path_points;
+    for (const auto& pl : on_surface.polylines) {
+      for (const SurfacePoint& p : pl)
+        path_points.push_back(MeshPoint::in_face(p.face, {p.bary[0], p.bary[1], p.bary[2]}));
+    }
+    const SplitMeshResult split = split_mesh_along_path(out, path_points);
+    const CutMeshResult cut = cut_mesh_along_path(split.mesh, split.path);
+    cut_edges += cut.num_cut_edges;
+    out = cut.mesh;
+  }
+  return out;
+}
+
+nlohmann::json stats_json(const ScalarStats& s) {
+  return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
+          {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};
+}
+
+/// The stitch mesh as triangles with one colour per stitch (for viewing).
+void write_coloured_stitches(const std::string& path, const StitchMesh& mesh,
+                             const std::vector<double>& value, double hi) {
+  TriMesh tri;
+  tri.vertices = mesh.vertices;
+  MeshWriteOptions w;
+  const std::vector<Rgb8> colour = scalar_colours(value, 0.0, hi > 0 ? hi : 1.0);
+  for (int s = 0; s < mesh.num_stitches(); ++s) {
+    const Stitch& st = mesh.stitches[s];
+    for (int k = 1; k + 1 < st.corners(); ++k) {
+      tri.faces.push_back({st.v[0], st.v[k], st.v[k + 1]});
+      w.face_colours.push_back({colour[s][0], colour[s][1], colour[s][2]});
+    }
+  }
+  write_mesh(path, tri, w);
+}
+
+}  // namespace
+
+void add_shortrow_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("shortrow",
+                                 "3D surface -> knittable short-row stitch mesh and knitting map (seed 3.2)");
+  struct Opts {
+    std::string input, outdir, stitch = "3.5x2.8", units = "mm", source, cut;
+    double diffusion = -1.0, lambda = -1.0;
+    bool json = false, no_evaluate = false, ascii = false, no_report = false;
+  };
+  auto o = std::make_shared<Opts>();
+  std::string names;
+  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  cmd->add_option("input", o->input, "Surface mesh (.obj/.ply/.off/.stl) or a built-in shape: " + names)
+      ->required();
+  cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
+  add_stitch_option(*cmd, o->stitch);
+  cmd->add_option("--units", o->units,
+                  "Units of the input mesh and of --source/--cut coordinates: mm, cm, m");
+  cmd->add_option("--source", o->source,
+                  "Geodesic source: plane:NX,NY,NZ,D (default: plane x = centre of the bounding box), "
+                  "boundary:BEGIN,END[,LOOP] (arc-length fractions), boundary-vertices:I,J,..., vertex:I, "
+                  "polyline:FILE.obj");
+  cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
+  cmd->add_option("--diffusion", o->diffusion,
+                  "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--lambda", o->lambda, "Initial bridge length limit in mm (default width + 2 x height)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  cmd->add_flag("--json", o->json, "Print report.json on stdout");
+  cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
+  cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
+  cmd->callback([=, &action] {
+    action = [=]() -> int {
+      Timer all;
+      const KnitParams params = parse_stitch_size(o->stitch);
+      const double scale = unit_scale(o->units);
+      std::string description;
+      Timer t;
+      TriMesh surface = load_input(o->input, o->units, description);
+      int cut_edges = 0;
+      if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
+      require_disk(surface, description);
+      const double load_seconds = t.seconds();
+      const GeodesicSource source = parse_source(surface, o->source, scale);
+
+      ShortRowOptions opt;
+      opt.params = params;
+      if (o->diffusion >= 0) opt.tessellation.mu = o->diffusion;
+      if (o->lambda > 0) opt.tessellation.lambda = o->lambda;
+      opt.evaluate = !o->no_evaluate;
+      opt.progress = [](const std::string& stage) { note(stage + " ..."); };
+      const ShortRowDesign d = design_short_rows(surface, source, opt);
+
+      // Outputs.
+      note("writing outputs ...");
+      t.reset();
+      const std::filesystem::path dir(o->outdir);
+      std::filesystem::create_directories(dir);
+      auto out = [&](const char* name) { return (dir / name).string(); };
+      StitchMeshPlyOptions ply;
+      ply.ascii = o->ascii;
+      {
+        // Per-stitch evaluation values go into the stitch mesh for viewers.
+        StitchMeshPlyOptions designed = ply;
+        if (d.evaluation) {
+          std::vector<double> distortion;
+          for (const auto& s : d.evaluation->designed_distortion) distortion.push_back(s.distortion);
+          designed.scalars.push_back({"distortion", distortion});
+          designed.scalars.push_back({"shape_error", d.evaluation->stitch_error});
+        }
+        write_stitch_mesh_ply(out("stitch_mesh.ply"), d.stitch_mesh, designed);
+      }
+      write_knitting_map_csv(out("knitting_map.csv"), d.map);
+      write_knitting_map_png(out("knitting_map.png"), d.map);
+      write_knitting_map_svg(out("knitting_map.svg"), d.map);
+      std::vector<std::vector<Vec3>> wales;
+      for (const auto& level : d.wales.wales) {
+        for (const auto& w : level) wales.push_back(w.points);
+      }
+      write_polylines_obj(out("wales.obj"), wales);
+      // The yarn follows the one-stroke knitting order, which only a
+      // knittable stitch mesh has.
+      if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
+      if (!d.wales.cuts.empty()) {
+        std::vector<std::vector<Vec3>> cuts;
+        for (const auto& c : d.wales.cuts) cuts.push_back(c.path);
+        write_polylines_obj(out("cuts.obj"), cuts);
+      }
+      {
+        MeshWriteOptions w;
+        w.ascii = o->ascii;
+        double lo = d.field.empty() ? 0 : d.field[0], hi = lo;
+        for (double f : d.field) lo = std::min(lo, f), hi = std::max(hi, f);
+        for (const Rgb8& c : scalar_colours(d.field, lo, hi > lo ? hi : lo + 1))
+          w.vertex_colours.push_back({c[0], c[1], c[2]});
+        write_mesh(out("field.ply"), surface, w);
+        MeshWriteOptions plain;
+        plain.ascii = o->ascii;
+        write_mesh(out("target.ply"), surface, plain);
+      }
+      nlohmann::json report;
+      if (d.evaluation) {
+        const StitchMeshEvaluation& ev = *d.evaluation;
+        StitchMeshPlyOptions relaxed = ply;
+        std::vector<double> relaxed_distortion;
+        for (const auto& s : ev.relaxed_distortion) relaxed_distortion.push_back(s.distortion);
+        relaxed.scalars.push_back({"shape_error", ev.stitch_error});
+        relaxed.scalars.push_back({"distortion", relaxed_distortion});
+        write_stitch_mesh_ply(out("relaxed.ply"), ev.relaxed, relaxed);
+        write_coloured_stitches(out("shape_error.ply"), ev.relaxed, ev.stitch_error,
+                                ev.stitch_error_stats.max);
+        std::vector<double> distortion;
+        for (const auto& s : ev.designed_distortion) distortion.push_back(s.distortion);
+        write_coloured_stitches(out("distortion.ply"), d.stitch_mesh, distortion,
+                                ev.designed_distortion_stats.max);
+        report["evaluation"] = {
+            {"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
+            {"shape_error_relative", {{"rms", ev.relative_rms_error}, {"max", ev.relative_max_error}}},
+            {"part_size_mm", ev.target_size},
+            {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
+            {"relaxation",
+             {{"iterations", ev.relax_iterations},
+              {"converged", ev.relax_converged},
+              {"energy_start", ev.relax_energy_start},
+              {"energy_end", ev.relax_energy_end}}},
+            {"correspondence_rms_mm", ev.correspondence_rms},
+            {"stitch_error_mm", stats_json(ev.stitch_error_stats)},
+            {"distortion_designed", stats_json(ev.designed_distortion_stats)},
+            {"distortion_relaxed", stats_json(ev.relaxed_distortion_stats)}};
+      }
+      const auto types = count_stitch_types(d.stitch_mesh);
+      const int short_row_ends = types[static_cast<int>(StitchType::ShortRowLeft)] +
+                                 types[static_cast<int>(StitchType::ShortRowRight)];
+      double cut_length = 0;
+      for (const auto& c : d.wales.cuts) cut_length += c.length;
+      const double expected = d.surface_area / (params.stitch_width * params.stitch_height);
+      report["input"] = {
+          {"surface", description},       {"units", o->units},          {"vertices", surface.num_vertices()},
+          {"faces", surface.num_faces()}, {"area_mm2", d.surface_area}, {"source", source.description},
+          {"user_cut_edges", cut_edges}};
+      report["parameters"] = {
+          {"stitch_width_mm", params.stitch_width},
+          {"stitch_height_mm", params.stitch_height},
+          {"lambda_mm", o->lambda > 0 ? o->lambda : params.stitch_width + 2 * params.stitch_height},
+          {"diffusion_mu_mm", o->diffusion >= 0 ? o->diffusion : 100 * params.stitch_width},
+          {"diffusion_length_mm", params.stitch_width}};
+      report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
+                          {"quads", types[static_cast<int>(StitchType::Knit)]},
+                          {"short_row_ends", short_row_ends},
+                          {"expected_stitches_area", expected},
+                          {"stitches_vs_area", d.stitch_mesh.num_stitches() / expected - 1.0},
+                          {"courses", d.map.rows},
+                          {"map_columns", d.map.cols},
+                          {"wales", d.wales.num_wales()},
+                          {"wale_levels", static_cast<int>(d.wales.values.size())},
+                          {"dropped_wale_pieces", d.wales.dropped_pieces},
+                          {"strips", d.strips},
+                          {"unpaired_wale_pieces", d.unpaired_pieces},
+                          {"lambda_growths", d.lambda_growths},
+                          {"max_lambda_mm", d.max_lambda},
+                          {"interior_apexes", d.interior_apexes},
+                          {"boundary_apex_triangles_to_quads", d.boundary_quads.triangles},
+                          {"support_stitches", d.courses.support_stitches},
+                          {"cuts", static_cast<int>(d.wales.cuts.size())},
+                          {"cut_length_mm", cut_length}};
+      report["field"] = {{"signed", d.field_signed}, {"windows", d.field_windows}};
+      report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
+      report["knittable"] = d.map_check.ok() && d.mesh_check.ok();
+      report["seconds"] = {{"load", load_seconds},
+                           {"field", d.seconds.field},
+                           {"wales", d.seconds.wales},
+                           {"tessellation", d.seconds.tessellation},
+                           {"post_processing", d.seconds.post_processing},
+                           {"courses", d.seconds.courses},
+                           {"map", d.seconds.map},
+                           {"knittability", d.seconds.check},
+                           {"evaluation", d.seconds.evaluation},
+                           {"design_total", d.seconds.total},
+                           {"output", t.seconds()}};
+      report["seconds"]["total"] = all.seconds();
+      const std::string text = report.dump(2) + "\n";
+      write_file_atomically(out("report.json"), [&](std::ostream& os) { os << text; });
+      if (o->json) std::fputs(text.c_str(), stdout);
+      if (!o->no_report) {
+        write_report_html(o->outdir);
+        note("report page -> " + out("report.html"));
+      }
+
+      note(fmt::format(
+          "{} stitches ({} short-row ends), {} courses x {} columns, {} wales, {} cuts; {:.2f} s -> {}",
+          d.stitch_mesh.num_stitches(), short_row_ends, d.map.rows, d.map.cols, d.wales.num_wales(),
+          d.wales.cuts.size(), all.seconds(), o->outdir));
+      if (d.evaluation) {
+        note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
+                         d.evaluation->rms_error, d.evaluation->max_error,
+                         100 * d.evaluation->relative_rms_error, 100 * d.evaluation->relative_max_error));
+      }
+      if (!(d.map_check.ok() && d.mesh_check.ok())) {
+        const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
+        std::fprintf(stderr, "%s", r.text().c_str());
+        note("the design is NOT knittable (details in report.json); outputs were written for inspection");
+        if (!d.wales.cuts.empty() || d.unpaired_pieces > 0) {
+          note(fmt::format(
+              "the field needed {} cut(s) and has {} unpaired wale piece(s): where it branches the "
+              "courses cannot be knitted in one stroke; try a source that avoids the cut locus, e.g. "
+              "the plane rotated by 90 degrees (see docs/shortrow.md)",
+              d.wales.cuts.size(), d.unpaired_pieces));
+        }
+        return 1;
+      }
+      note("knittable: the map passes every check");
+      return 0;
+    };
+  });
+}
+
+}  // namespace knitforge::cli

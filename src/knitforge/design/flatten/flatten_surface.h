@@ -1,0 +1,70 @@
+#pragma once
+/// \file flatten_surface.h
+/// Flattening a 3D surface with knittable darts (seed §2.3.1): cut the
+/// darts (dart.h), start from Tutte's barycentric embedding, run ARAP
+/// (arap_flatten.h) without constraints and turn the pattern into the
+/// reference frame (below), then continue ARAP with the notch alignment
+/// constraints (same x for horizontal darts, same y for vertical darts) as
+/// hard constraints; measure the distortion (flattening_distortion.h) and
+/// each dart's angle against the knittability limit.
+///
+/// Reference frame (so that "horizontal" means along the courses): the
+/// pattern is rigidly rotated and translated to best fit (least squares) the
+/// projection of the 3D vertices onto the plane perpendicular to the mean
+/// (area-weighted) normal, with x along the projection of the world x axis
+/// (world y if x is nearly parallel to the normal). For the built-in shapes
+/// (z up) the pattern's x and y follow the world x and y.
+#include <vector>
+#include "knitforge/design/flatten/dart.h"
+#include "knitforge/design/flatten/flattening_distortion.h"
+#include "knitforge/geometry/arap_flatten.h"
+#include "knitforge/geometry/tri_mesh.h"
+
+namespace knitforge {
+
+struct FlattenOptions {
+  int max_iterations = 300;  ///< ARAP iterations per phase
+  double tolerance = 1e-6;   ///< relative energy change that stops ARAP
+  /// Stitch size (mm) for the dart angle limit (dart_angle_limit()).
+  double stitch_width = 3.5;
+  double stitch_height = 2.8;
+  /// Throw when a dart's angle exceeds the limit (the seed: such darts
+  /// cannot be knitted closed, they become boundaries sewn afterwards).
+  /// false: report it in DartResult::angle_ok only.
+  bool enforce_dart_angle = true;
+};
+
+/// A flattened surface.
+struct Flattening {
+  TriMesh mesh;          ///< the input cut along the darts (3D, mm)
+  std::vector<Vec2> uv;  ///< 2D pattern per vertex of `mesh` (mm)
+  std::vector<DartResult> darts;
+  std::vector<FaceDistortion> distortion;  ///< per face of `mesh`
+  DistortionStats stats;
+  int iterations = 0;  ///< ARAP iterations, both phases
+  bool converged = false;
+  double relative_energy = 0.0;
+  std::vector<int> flipped_faces;  ///< faces of `mesh` flipped in the pattern
+  double seconds_cut = 0.0;        ///< wall time of cutting the darts
+  double seconds_flatten = 0.0;    ///< Tutte + ARAP
+};
+
+/// Flattens `mesh` with `darts` (see the file comment).
+/// \throw TopologyError when the mesh is not a disk (the message says how to
+///        cut it); InvalidInput from cut_darts() naming the dart, or when a
+///        dart's angle exceeds the limit and enforce_dart_angle is set (the
+///        message names the dart, its angle and the limit); SolverError.
+Flattening flatten_surface(const TriMesh& mesh, const std::vector<DartSpec>& darts = {},
+                           const FlattenOptions& options = {});
+
+/// The flattening steps of flatten_surface() on darts already cut
+/// (cut_darts() / append_dart()); `cut` is consumed.
+/// \throw as flatten_surface() (except the disk check).
+Flattening flatten_cut(CutDarts cut, const FlattenOptions& options = {});
+
+/// Rigid motion of the 2D positions uv (of mesh's vertices) that best fits
+/// the projection described in the file comment.
+/// \throw InvalidInput when the sizes differ or the mesh has zero area.
+std::vector<Vec2> align_pattern_to_reference(const TriMesh& mesh, const std::vector<Vec2>& uv);
+
+}  // namespace knitforge

@@ -1,0 +1,106 @@
+#include "knitforge/design/shortrow/design_short_rows.h"
+
+#include <fmt/format.h>
+
+#include "knitforge/convert/map_knittability.h"
+#include "knitforge/convert/stitch_mesh_to_map.h"
+#include "knitforge/geometry/geodesic_distance.h"
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/util/errors.h"
+#include "knitforge/util/timer.h"
+
+namespace knitforge {
+
+namespace {
+
+/// Drops vertices no stitch uses, keeping the order of the others.
+void remove_unused_vertices(StitchMesh& mesh) {
+  std::vector<int> index(mesh.num_vertices(), -1);
+  for (const Stitch& s : mesh.stitches) {
+    for (int k = 0; k < s.corners(); ++k) index[s.v[k]] = 0;
+  }
+  std::vector<Vec3> kept;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (index[v] < 0) continue;
+    index[v] = static_cast<int>(kept.size());
+    kept.push_back(mesh.vertices[v]);
+  }
+  for (Stitch& s : mesh.stitches) {
+    for (int k = 0; k < s.corners(); ++k) s.v[k] = index[s.v[k]];
+  }
+  mesh.vertices = std::move(kept);
+}
+
+}  // namespace
+
+ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& source,
+                                 const ShortRowOptions& options) {
+  const Timer total;
+  auto stage = [&](const std::string& name) {
+    if (options.progress) options.progress(name);
+  };
+  ShortRowDesign d;
+  d.surface_area = total_area(surface);
+  Timer t;
+
+  stage("geodesic field");
+  const GeodesicField field = geodesic_distance(surface, source);
+  d.field = field.distance;
+  d.field_signed = field.is_signed;
+  d.field_windows = field.num_windows;
+  d.seconds.field = t.seconds();
+
+  stage("wale curves");
+  t.reset();
+  d.wales = compute_wale_curves(surface, d.field, options.params, options.wales);
+  d.seconds.wales = t.seconds();
+
+  stage("tessellation");
+  t.reset();
+  WaleTessellation tess = tessellate_wales(d.wales, options.params, options.tessellation);
+  d.strips = tess.num_strips;
+  d.unpaired_pieces = tess.unpaired_pieces;
+  d.lambda_growths = tess.lambda_growths;
+  d.max_lambda = tess.max_lambda;
+  for (char end : tess.apex_on_wale_end) d.interior_apexes += end ? 0 : 1;
+  d.stitch_mesh = std::move(tess.mesh);
+  d.seconds.tessellation = t.seconds();
+
+  stage("post-processing");
+  t.reset();
+  remove_unused_vertices(d.stitch_mesh);
+  d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
+  d.seconds.post_processing = t.seconds();
+
+  stage("courses");
+  t.reset();
+  d.courses = order_courses(d.stitch_mesh);
+  d.seconds.courses = t.seconds();
+
+  stage("knitting map");
+  t.reset();
+  try {
+    d.map = stitch_mesh_to_map(d.stitch_mesh);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(
+        fmt::format("short-row design: the stitch mesh cannot be laid out as a knitting map: {}", e.what()));
+  }
+  d.seconds.map = t.seconds();
+
+  stage("knittability");
+  t.reset();
+  d.mesh_check = check_knittability(d.stitch_mesh);
+  d.map_check = check_knittability(d.map, options.params);
+  d.seconds.check = t.seconds();
+
+  if (options.evaluate) {
+    stage("evaluation");
+    t.reset();
+    d.evaluation = evaluate_stitch_mesh(d.stitch_mesh, surface, options.params, options.evaluation);
+    d.seconds.evaluation = t.seconds();
+  }
+  d.seconds.total = total.seconds();
+  return d;
+}
+
+}  // namespace knitforge

@@ -1,0 +1,82 @@
+#pragma once
+/// \file design_short_rows.h
+/// The short-row design route (seed §3.2), stage by stage:
+///
+///  1. governing field: geodesic distance from the source (geodesic_distance.h),
+///     signed when the source cuts the surface in two;
+///  2. wale curves: isocurves every sw, closed ones opened by cuts, sampled at
+///     sh (wale_curves.h);
+///  3. tessellation of every strip with apex diffusion (tessellate_wales.h);
+///  4. post-processing: boundary-apex triangles to quads
+///     (boundary_apex_quads.h);
+///  5. courses by flooding, greedy topological order, support stitches
+///     (order_courses.h);
+///  6. knitting map (stitch_mesh_to_map()) and knittability of map and mesh;
+///  7. evaluation (evaluate_stitch_mesh(): relaxed shape, shape error,
+///     per-stitch distortion), optional.
+///
+/// Deterministic: the same surface, source and options give the same result.
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "knitforge/core/knit_params.h"
+#include "knitforge/core/knittability.h"
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
+#include "knitforge/design/shortrow/boundary_apex_quads.h"
+#include "knitforge/design/shortrow/order_courses.h"
+#include "knitforge/design/shortrow/tessellate_wales.h"
+#include "knitforge/design/shortrow/wale_curves.h"
+#include "knitforge/evaluate/evaluate_stitch_mesh.h"
+#include "knitforge/geometry/geodesic_source.h"
+#include "knitforge/geometry/tri_mesh.h"
+
+namespace knitforge {
+
+/// Options of design_short_rows().
+struct ShortRowOptions {
+  KnitParams params;  ///< stitch size (mm)
+  WaleOptions wales;
+  TessellateWalesOptions tessellation;  ///< lambda, mu (apex diffusion), D unit
+  bool evaluate = true;                 ///< run stage 7
+  EvaluateOptions evaluation;
+  /// Called at the start of every stage with its name (progress reports).
+  std::function<void(const std::string&)> progress;
+};
+
+/// Wall-clock seconds per stage.
+struct ShortRowTimings {
+  double field = 0, wales = 0, tessellation = 0, post_processing = 0, courses = 0, map = 0, check = 0,
+         evaluation = 0, total = 0;
+};
+
+/// Everything the route produces.
+struct ShortRowDesign {
+  std::vector<double> field;  ///< per vertex of the input surface (mm)
+  bool field_signed = false;
+  size_t field_windows = 0;
+  WaleCurves wales;        ///< includes the surface after cuts
+  StitchMesh stitch_mesh;  ///< the designed stitch mesh (courses set)
+  KnittingMap map;
+  KnittabilityReport mesh_check;
+  KnittabilityReport map_check;
+  /// Tessellation statistics (the mesh itself is moved into stitch_mesh).
+  int strips = 0, unpaired_pieces = 0, lambda_growths = 0;
+  double max_lambda = 0.0;
+  int interior_apexes = 0;  ///< short-row-end pairs placed off the wale ends
+  BoundaryApexQuadStats boundary_quads;
+  CourseOrder courses;
+  std::optional<StitchMeshEvaluation> evaluation;
+  double surface_area = 0.0;  ///< of the input (mm^2)
+  ShortRowTimings seconds;
+};
+
+/// Runs the route on `surface` (mm) with the field of `source`.
+/// \throw InvalidInput / TopologyError / SolverError from the stages, with
+///        messages that name the stage and what to change.
+ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& source,
+                                 const ShortRowOptions& options);
+
+}  // namespace knitforge

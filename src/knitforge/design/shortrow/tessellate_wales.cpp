@@ -1,0 +1,223 @@
+#include "knitforge/design/shortrow/tessellate_wales.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "knitforge/design/shortrow/tessellate_strip.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+
+namespace {
+
+/// For every even sample of `from`, the piece of `to` holding the nearest
+/// even sample (-1 when `to` is empty).
+std::vector<int> nearest_piece(const WaleCurve& from, const std::vector<WaleCurve>& to) {
+  std::vector<int> owner;
+  for (size_t k = 0; k < from.points.size(); k += 2) {
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    if (to.size() == 1) {
+      best = 0;
+    } else {
+      for (size_t q = 0; q < to.size(); ++q) {
+        for (size_t m = 0; m < to[q].points.size(); m += 2) {
+          const double d = (from.points[k] - to[q].points[m]).squaredNorm();
+          if (d < best_d) {
+            best_d = d;
+            best = static_cast<int>(q);
+          }
+        }
+      }
+    }
+    owner.push_back(best);
+  }
+  return owner;
+}
+
+/// The longest run of consecutive even samples owned by `piece`, as sample
+/// indices [first, last] into the points; {-1, -1} when it has fewer than
+/// two even samples (one segment pair). Runs of different pieces never
+/// overlap, so no wale segment is used by two strips on the same side.
+std::pair<int, int> owned_range(const std::vector<int>& owner, int piece) {
+  int best_first = -1, best_len = 0;
+  for (size_t k = 0; k < owner.size();) {
+    if (owner[k] != piece) {
+      ++k;
+      continue;
+    }
+    size_t e = k;
+    while (e < owner.size() && owner[e] == piece) ++e;
+    if (static_cast<int>(e - k) > best_len) {
+      best_len = static_cast<int>(e - k);
+      best_first = static_cast<int>(k);
+    }
+    k = e;
+  }
+  if (best_len < 2) return {-1, -1};
+  return {2 * best_first, 2 * (best_first + best_len - 1)};
+}
+
+/// Even sample of `w` in [lo, hi] nearest to x.
+int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const Vec3& x) {
+  int best = lo;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int k = lo; k <= hi; k += 2) {
+    const double d = (w[k] - x).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
+/// Shortens the overhang of the longer wale beyond each end of the shorter
+/// one to half its length (see the header).
+void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int& a0, int& a1, int& b0,
+                    int& b1) {
+  auto half_even = [](int n) { return 2 * ((n / 2) / 2); };  // n even: half of it, rounded down to even
+  if (a1 - a0 < 4 || b1 - b0 < 4) return;  // keep at least two segments per side after trimming
+  // Bottom ends.
+  const int jb = nearest_even(b, b0, b1, a[a0]);
+  const int ia = nearest_even(a, a0, a1, b[b0]);
+  if (jb > b0) {
+    b0 += half_even(jb - b0);
+  } else if (ia > a0) {
+    a0 += half_even(ia - a0);
+  }
+  // Top ends.
+  const int jt = nearest_even(b, b0, b1, a[a1]);
+  const int it = nearest_even(a, a0, a1, b[b1]);
+  if (jt < b1) {
+    b1 -= half_even(b1 - jt);
+  } else if (it < a1) {
+    a1 -= half_even(a1 - it);
+  }
+  if (a1 - a0 < 2) a1 = a0 + 2;
+  if (b1 - b0 < 2) b1 = b0 + 2;
+}
+
+struct Box {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
+  void add(const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool contains(const Vec3& p, double margin) const {
+    return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
+  }
+};
+
+}  // namespace
+
+WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& params,
+                                  const TessellateWalesOptions& options) {
+  const double sw = params.stitch_width, sh = params.stitch_height;
+  const double diffusion_length = options.diffusion_length.value_or(sw);
+  if (!(diffusion_length > 0.0)) {
+    throw InvalidInput(
+        fmt::format("tessellate wales: diffusion length {} mm must be positive", diffusion_length));
+  }
+  int nonempty = 0;
+  for (const auto& l : wales.wales) nonempty += l.empty() ? 0 : 1;
+  if (nonempty < 2) {
+    throw InvalidInput(
+        fmt::format("tessellate wales: only {} level(s) of the field carry a wale; at least two are needed "
+                    "for one strip of "
+                    "stitches: use a smaller stitch width (now {} mm)",
+                    nonempty, sw));
+  }
+
+  WaleTessellation out;
+  // Vertices: all samples, wale by wale.
+  std::vector<std::vector<int>> offset(wales.wales.size());
+  int flat = 0;
+  for (size_t l = 0; l < wales.wales.size(); ++l) {
+    for (const WaleCurve& w : wales.wales[l]) {
+      offset[l].push_back(out.mesh.num_vertices());
+      for (size_t k = 0; k < w.points.size(); ++k) {
+        out.mesh.vertices.push_back(w.points[k]);
+        out.vertex_wale.push_back(flat);
+        out.vertex_sample.push_back(static_cast<int>(k));
+      }
+      ++flat;
+    }
+  }
+
+  const double margin = 4.0 * diffusion_length;
+  std::vector<char> paired_flat(flat, 0);
+  int flat_base = 0;
+  for (size_t l = 0; l + 1 < wales.wales.size(); ++l) {
+    const auto& lower = wales.wales[l];
+    const auto& upper = wales.wales[l + 1];
+    const int upper_base = flat_base + static_cast<int>(lower.size());
+    std::vector<std::vector<int>> lower_owner(lower.size()), upper_owner(upper.size());
+    for (size_t p = 0; p < lower.size(); ++p) lower_owner[p] = nearest_piece(lower[p], upper);
+    for (size_t q = 0; q < upper.size(); ++q) upper_owner[q] = nearest_piece(upper[q], lower);
+    for (size_t p = 0; p < lower.size(); ++p) {
+      for (size_t q = 0; q < upper.size(); ++q) {
+        auto [a0, a1] = owned_range(lower_owner[p], static_cast<int>(q));
+        auto [b0, b1] = owned_range(upper_owner[q], static_cast<int>(p));
+        if (a0 < 0 || b0 < 0) continue;
+        trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1);
+        const std::vector<Vec3> a(lower[p].points.begin() + a0, lower[p].points.begin() + a1 + 1);
+        const std::vector<Vec3> b(upper[q].points.begin() + b0, upper[q].points.begin() + b1 + 1);
+        Box box;
+        for (const Vec3& x : a) box.add(x);
+        for (const Vec3& x : b) box.add(x);
+
+        StripOptions so;
+        so.stitch_width = sw;
+        so.stitch_height = sh;
+        so.lambda = options.lambda;
+        so.mu = options.mu;
+        so.diffusion_length = diffusion_length;
+        so.strip_index = out.num_strips;
+        for (size_t k = 0; k < out.apexes.size(); ++k) {
+          if (!out.apex_on_wale_end[k] && box.contains(out.apexes[k], margin)) {
+            so.previous_apexes.push_back(out.apexes[k]);
+          }
+        }
+        const StripTessellation t = tessellate_strip(a, b, so);
+        const int base_a = offset[l][p] + a0, base_b = offset[l + 1][q] + b0;
+        const int na = static_cast<int>(a.size());
+        for (const StripFace& f : t.faces) {
+          Stitch s;
+          s.type = f.type;
+          s.direction = static_cast<int8_t>(f.direction);
+          s.wale = static_cast<int>(l);
+          for (int k = 0; k < 4; ++k) {
+            const int id = f.corners[k];
+            s.v[k] = id < 0 ? -1 : (id < na ? base_a + id : base_b + id - na);
+          }
+          out.mesh.stitches.push_back(s);
+          out.stitch_strip.push_back(out.num_strips);
+          out.stitch_level.push_back(static_cast<int>(l));
+        }
+        for (const StripApex& ap : t.apexes) {
+          out.apexes.push_back(ap.position);
+          out.apex_on_wale_end.push_back(ap.on_wale_end ? 1 : 0);
+        }
+        out.lambda_growths += t.lambda_growths;
+        out.max_lambda = std::max(out.max_lambda, t.lambda);
+        out.cost += t.cost;
+        paired_flat[flat_base + p] = 1;
+        paired_flat[upper_base + q] = 1;
+        ++out.num_strips;
+      }
+    }
+    flat_base = upper_base;
+  }
+  for (char c : paired_flat) out.unpaired_pieces += c ? 0 : 1;
+  if (out.mesh.stitches.empty()) {
+    throw InvalidInput("tessellate wales: no strip between neighbouring wales could be formed");
+  }
+  return out;
+}
+
+}  // namespace knitforge

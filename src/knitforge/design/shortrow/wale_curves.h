@@ -1,0 +1,92 @@
+#pragma once
+/// \file wale_curves.h
+/// Wale curves of the short-row route (seed §3.2.1): isocurves of the
+/// governing field F every stitch width, opened where they close, sampled at
+/// the stitch height into an even number of segments.
+///
+/// Levels: F = k sw for every integer k with min F <= k sw <= max F (so the
+/// source itself, F = 0, is a wale when it lies on the surface). Each level
+/// may give several open pieces (the isocurve of a disk can fall apart into
+/// several arcs, e.g. around a peak); they are kept as separate wales of the
+/// same level, ordered as extract_isocurves() returns them.
+///
+/// Closed isocurves (seed §3.2.1, Fig. 3.2(a)) cannot be wales (topological
+/// constraint of §1.2.2). Inside a closed isocurve the field has a local
+/// extremum p (a maximum of |F|); the surface is cut along the shortest path
+/// from p to the boundary (geodesic_path_to_boundary(), then
+/// split_mesh_along_path() and cut_mesh_along_path(), seed §2.B) and the
+/// isocurves are extracted again, until no closed one is left. The field is
+/// carried over to the cut surface unchanged (it is piecewise linear, so
+/// values on the new vertices are exact interpolations): the wales are the
+/// same curves, opened at the cut.
+///
+/// Orientation: every wale runs along n x grad F (isocurves.h), i.e. up in
+/// the knitting direction, with larger field values to its right.
+///
+/// Sampling: resample_polyline() at the stitch height with the ends extended
+/// when the natural count is odd (seed: "a wale curve's two ends are slightly
+/// extended when odd segments are obtained"). Pieces shorter than
+/// min_length_fraction x sh are dropped and counted (they are slivers where
+/// a level grazes the boundary; at most one stitch of area each).
+
+#include <vector>
+
+#include "knitforge/core/knit_params.h"
+#include "knitforge/geometry/tri_mesh.h"
+#include "knitforge/geometry/vec.h"
+
+namespace knitforge {
+
+/// Options of compute_wale_curves().
+struct WaleOptions {
+  /// Pieces shorter than this fraction of the stitch height are dropped.
+  double min_length_fraction = 0.5;
+  /// At most this many cuts for closed isocurves before giving up.
+  int max_cuts = 64;
+};
+
+/// One wale: an open, sampled isocurve piece.
+struct WaleCurve {
+  int level = 0;       ///< index into WaleCurves::values
+  double value = 0.0;  ///< the field value k sw of the level
+  /// Samples (mm), an odd number >= 3 (an even number of segments), running
+  /// along n x grad F.
+  std::vector<Vec3> points;
+  std::vector<Vec3> isocurve;  ///< the isocurve before resampling (mm)
+  double length = 0.0;         ///< length of `isocurve` (mm)
+  double extension = 0.0;      ///< added at each end when resampling (mm)
+};
+
+/// A cut made to open closed isocurves.
+struct WaleCut {
+  double level_value = 0.0;      ///< field value of the closed isocurve that asked for it
+  Vec3 extremum = Vec3::Zero();  ///< the local extremum it starts from (mm)
+  std::vector<Vec3> path;        ///< the cut, from the extremum to the boundary (mm)
+  double length = 0.0;           ///< mm
+};
+
+/// Result of compute_wale_curves().
+struct WaleCurves {
+  TriMesh surface;             ///< the surface after the cuts (the input when none)
+  std::vector<double> field;   ///< F per vertex of `surface`
+  std::vector<double> values;  ///< the levels, increasing
+  /// wales[l]: the pieces of level l (possibly none), in a deterministic order.
+  std::vector<std::vector<WaleCurve>> wales;
+  std::vector<WaleCut> cuts;
+  int dropped_pieces = 0;  ///< pieces shorter than min_length_fraction x sh
+  int num_wales() const;   ///< total number of pieces over all levels
+};
+
+/// Extracts, opens and samples the wale curves of `field` on `mesh`.
+/// \pre mesh is a disk-like manifold surface (validate_surface /
+///      require_disk), field has one finite value per vertex.
+/// \throw InvalidInput for a field of the wrong size or non-finite values,
+///        non-positive stitch sizes, a field whose range is below one stitch
+///        width (no two wales: the message gives the range and the width);
+///        TopologyError when a closed isocurve cannot be opened (no boundary
+///        reachable, or more than max_cuts cuts needed — the message gives
+///        the level and where the loop is).
+WaleCurves compute_wale_curves(const TriMesh& mesh, const std::vector<double>& field,
+                               const KnitParams& params, const WaleOptions& options = {});
+
+}  // namespace knitforge

@@ -1,0 +1,65 @@
+// End-to-end runs of `knitforge shortrow` (issue: short-row design route).
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_fixture.h"
+#include "knitforge/convert/map_knittability.h"
+#include "knitforge/core/knittability.h"
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+
+using namespace knitforge;
+using namespace knitforge_e2e;
+
+TEST_F(Cli, ShortRowHemisphereWritesEveryOutput) {
+  const std::string out = path("hemi");
+  const CliRun r = run("shortrow hemisphere --stitch 3.2x2.2 -o " + out + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"stitch_mesh.ply", "knitting_map.csv", "knitting_map.png", "knitting_map.svg",
+                        "wales.obj", "field.ply", "target.ply", "relaxed.ply", "shape_error.ply",
+                        "distortion.ply", "yarn.obj", "report.json"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  }
+  // A progress line per stage on stderr.
+  for (const char* stage : {"geodesic field", "wale curves", "tessellation", "post-processing", "courses",
+                            "knitting map", "evaluation"}) {
+    EXPECT_NE(r.err.find(stage), std::string::npos) << stage;
+  }
+  const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(report, nlohmann::json::parse(r.out)) << "--json prints report.json";
+  EXPECT_TRUE(report["knittable"].get<bool>());
+  const KnittingMap map = read_knitting_map_csv(out + "/knitting_map.csv");
+  EXPECT_TRUE(check_knittability(map, KnitParams{3.2, 2.2}).ok());
+  const StitchMesh mesh = read_stitch_mesh_ply(out + "/stitch_mesh.ply");
+  EXPECT_EQ(mesh.num_stitches(), report["counts"]["stitches"].get<int>());
+  EXPECT_EQ(map.rows, report["counts"]["courses"].get<int>());
+  EXPECT_EQ(static_cast<int>(read_polylines_obj(out + "/wales.obj").size()),
+            report["counts"]["wales"].get<int>());
+  EXPECT_LT(std::abs(report["counts"]["stitches_vs_area"].get<double>()), 0.05);
+  EXPECT_GT(report["evaluation"]["shape_error_mm"]["rms"].get<double>(), 0.0);
+  EXPECT_EQ(read_mesh(out + "/field.ply").num_faces(), read_mesh(out + "/target.ply").num_faces());
+}
+
+TEST_F(Cli, ShortRowBadInputsExitOneAndWriteNothing) {
+  const std::string out = path("bad");
+  CliRun r = run("shortrow hemisphere --stitch 3.2x2.2 --source plane:1,0,0,500 -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("misses the surface"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out + "/report.json"));
+  r = run("shortrow hemisphere --source banana:1 -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("unknown kind 'banana'"), std::string::npos) << r.err;
+  r = run("shortrow no_such_file.obj -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no_such_file.obj"), std::string::npos) << r.err;
+  // A closed surface is not a disk: the message says how to cut it.
+  TriMesh tet;
+  tet.vertices = {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0), Vec3(0, 0, 10)};
+  tet.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  write_mesh(path("tet.obj"), tet);
+  r = run("shortrow " + path("tet.obj") + " -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("cut"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out + "/report.json"));
+}

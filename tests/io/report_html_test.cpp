@@ -1,0 +1,244 @@
+// Tests of the report page builder (io/report_html.h): the data object for
+// hand-made output directories, the page's escaping, the atomic write, and
+// the errors for bad directories and files.
+#include "knitforge/io/report_html.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io_test_util.h"
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+
+namespace knitforge {
+namespace {
+
+using nlohmann::json;
+using test::TempDir;
+
+/// A knit quad with a decrease on top; coordinates that are not multiples of 0.01.
+StitchMesh two_stitches() {
+  StitchMesh m;
+  m.vertices = {Vec3(0.0, 0.0, 0.0), Vec3(3.504, 0.0, 0.0), Vec3(3.5, 2.806, 0.0), Vec3(0.0, 2.8, -1.234),
+                Vec3(1.756, 5.0, 0.0)};
+  Stitch knit;
+  knit.v = {0, 1, 2, 3};
+  knit.course = 0;
+  knit.wale = 0;
+  Stitch dec;
+  dec.type = StitchType::Decrease;
+  dec.direction = -1;
+  dec.v = {3, 2, 4, -1};
+  dec.course = 1;
+  dec.wale = 0;
+  dec.yarn = 2;
+  m.stitches = {knit, dec};
+  return m;
+}
+
+size_t count(const std::string& s, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+TEST(ReportHtml, EmptyDirectoryHasNothingToReport) {
+  TempDir dir;
+  const std::string msg = test::io_error([&] { report_data(dir.path("")); });
+  EXPECT_CONTAINS(msg, "nothing to report");
+  EXPECT_CONTAINS(msg, "stitch_mesh.ply");
+  EXPECT_EQ(dir.num_files(), 0u);  // nothing written either
+  test::io_error([&] { write_report_html(dir.path("")); });
+  EXPECT_EQ(dir.num_files(), 0u);
+}
+
+TEST(ReportHtml, NotADirectory) {
+  TempDir dir;
+  const std::string file = dir.write("x.txt", "hello");
+  EXPECT_CONTAINS(test::io_error([&] { report_data(file); }), "not a directory");
+  EXPECT_CONTAINS(test::io_error([&] { report_data(dir.path("missing")); }), "not a directory");
+}
+
+TEST(ReportHtml, DataOfAStitchMeshMapMetricsAndYarn) {
+  TempDir dir;
+  write_stitch_mesh_ply(dir.path("stitch_mesh.ply"), two_stitches());
+  KnittingMap map(2, 3, CellType::Knit);
+  map.at(1, 0) = CellType::ShortRowLeft;
+  map.at(1, 2) = CellType::Empty;
+  write_knitting_map_csv(dir.path("knitting_map.csv"), map);
+  dir.write("report.json", R"({"counts": {"stitches": 2}, "knittable": true, "label": "a </script> b"})");
+  write_polylines_obj(dir.path("yarn.obj"), {{Vec3(0, 0, 0), Vec3(1.006, 2, 3)}}, {"yarn_0"});
+
+  ReportHtmlOptions opt;
+  opt.title = "t";
+  const json d = report_data(dir.path(""), opt);
+  EXPECT_EQ(d["format"], "knitforge-report");
+  EXPECT_EQ(d["title"], "t");
+  EXPECT_DOUBLE_EQ(d["scale"].get<double>(), 0.01);
+
+  // Positions are integers in units of 0.01 mm, rounded to nearest.
+  const json& sm = d["stitch_mesh"];
+  EXPECT_EQ(sm["positions"], json({0, 0, 0, 350, 0, 0, 350, 281, 0, 0, 280, -123, 176, 500, 0}));
+  EXPECT_EQ(sm["corners"], json({0, 1, 2, 3, 3, 2, 4, -1}));
+  EXPECT_EQ(sm["type"], json({0, 4}));
+  EXPECT_EQ(sm["direction"], json({1, -1}));
+  EXPECT_EQ(sm["course"], json({0, 1}));
+  EXPECT_EQ(sm["wale"], json({0, 0}));
+  EXPECT_EQ(sm["yarn"], json({0, 2}));
+  EXPECT_TRUE(sm["scalars"].empty());
+
+  // Map cells row-major from row 0 (the CSV lists the top row first).
+  EXPECT_EQ(d["map"]["rows"], 2);
+  EXPECT_EQ(d["map"]["cols"], 3);
+  EXPECT_EQ(d["map"]["cells"], "KKKLK.");
+  EXPECT_EQ(d["map"]["direction"], json({1, -1}));
+  EXPECT_FALSE(d["map"].contains("yarn"));
+
+  EXPECT_EQ(d["metrics"]["counts"]["stitches"], 2);
+  EXPECT_EQ(d["metrics"]["label"], "a </script> b");
+  EXPECT_EQ(d["yarn"]["names"], json({"yarn_0"}));
+  EXPECT_EQ(d["yarn"]["polylines"], json({json({0, 0, 0, 101, 200, 300})}));
+
+  EXPECT_FALSE(d.contains("target"));
+  EXPECT_FALSE(d.contains("knitout"));
+  std::vector<std::string> names;
+  for (const json& f : d["files"]) names.push_back(f["name"]);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"report.json", "stitch_mesh.ply", "knitting_map.csv", "yarn.obj"}));
+  ASSERT_EQ(d["notes"].size(), 1u);
+  EXPECT_CONTAINS(d["notes"][0].get<std::string>(), "target.ply");
+  EXPECT_CONTAINS(d["notes"][0].get<std::string>(), "knitout.k");
+
+  // A coarser resolution rounds to its multiples.
+  opt.quantum_mm = 0.5;
+  const json coarse = report_data(dir.path(""), opt);
+  EXPECT_EQ(coarse["stitch_mesh"]["positions"], json({0, 0, 0, 7, 0, 0, 7, 6, 0, 0, 6, -2, 4, 10, 0}));
+}
+
+TEST(ReportHtml, ExtraFacePropertiesBecomeScalarFields) {
+  TempDir dir;
+  dir.write(
+      "stitch_mesh.ply",
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nproperty uchar type\nproperty char direction\n"
+      "property float shape_error\nproperty double distortion\nproperty uchar red\nend_header\n"
+      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0\n"
+      "4 0 1 2 3 0 1 0.25 1.234567 9\n"
+      "3 3 2 4 4 -1 0.5 nan 9\n");
+  const json d = report_data(dir.path(""));
+  const json& sc = d["stitch_mesh"]["scalars"];
+  ASSERT_EQ(sc.size(), 2u);  // red is a colour, not a field
+  EXPECT_EQ(sc["shape_error"], json({0.25, 0.5}));
+  // 5 significant digits of the largest magnitude; NaN becomes null.
+  EXPECT_EQ(sc["distortion"][0].get<double>(), 1.2346);
+  EXPECT_TRUE(sc["distortion"][1].is_null());
+}
+
+TEST(ReportHtml, LongPolylinesAreThinned) {
+  TempDir dir;
+  std::vector<Vec3> a, b;
+  for (int i = 0; i < 8; ++i) a.push_back(Vec3(i, 0, 0));
+  for (int i = 0; i < 4; ++i) b.push_back(Vec3(0, i, 0));
+  write_polylines_obj(dir.path("yarn.obj"), {a, b}, {"yarn_0", "yarn_1"});
+  ReportHtmlOptions opt;
+  opt.max_polyline_points = 6;  // 12 points -> every 2nd point and the last
+  json d = report_data(dir.path(""), opt);
+  EXPECT_EQ(d["yarn"]["polylines"][0], json({0, 0, 0, 200, 0, 0, 400, 0, 0, 600, 0, 0, 700, 0, 0}));
+  EXPECT_EQ(d["yarn"]["polylines"][1], json({0, 0, 0, 0, 200, 0, 0, 300, 0}));
+  ASSERT_EQ(d["notes"].size(), 2u);
+  EXPECT_CONTAINS(d["notes"][0].get<std::string>(),
+                  "yarn.obj: 12 points; the page draws one point in 2 (8 points)");
+  opt.max_polyline_points = 12;  // at the limit: untouched
+  d = report_data(dir.path(""), opt);
+  EXPECT_EQ(d["yarn"]["polylines"][0].size(), 24u);
+  EXPECT_EQ(d["notes"].size(), 1u);
+}
+
+TEST(ReportHtml, RelaxedIsAStitchMeshOrAPlainMesh) {
+  TempDir dir;
+  TriMesh tri;
+  tri.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0.123)};
+  tri.faces = {{0, 1, 2}};
+  write_mesh(dir.path("relaxed.ply"), tri);
+  write_mesh(dir.path("target.ply"), tri);
+  json d = report_data(dir.path(""));
+  EXPECT_EQ(d["relaxed"]["kind"], "mesh");
+  EXPECT_EQ(d["relaxed"]["triangles"], json({0, 1, 2}));
+  EXPECT_EQ(d["target"]["positions"], json({0, 0, 0, 100, 0, 0, 0, 100, 12}));
+  EXPECT_FALSE(d["target"].contains("kind"));
+
+  write_stitch_mesh_ply(dir.path("relaxed.ply"), two_stitches());
+  d = report_data(dir.path(""));
+  EXPECT_EQ(d["relaxed"]["kind"], "stitch_mesh");
+  EXPECT_EQ(d["relaxed"]["type"], json({0, 4}));
+}
+
+TEST(ReportHtml, KnitoutStatistics) {
+  TempDir dir;
+  dir.write("knitout.k",
+            ";!knitout-2\n;;Carriers: 1 2 3\n;;Machine: NoSuchMachine\nin 3\n"
+            "knit + f1 3\nknit + f2 3\nknit - f2 3\nout 3\n");
+  const json d = report_data(dir.path(""));
+  const json& k = d["knitout"];
+  EXPECT_EQ(k["lines"], 8);
+  EXPECT_EQ(k["operations"]["knit"], 3);
+  EXPECT_EQ(k["operations"]["in"], 1);
+  EXPECT_EQ(k["carriers"], json({"1", "2", "3"}));
+  EXPECT_CONTAINS(k["simulation"].get<std::string>(), "NoSuchMachine");
+}
+
+TEST(ReportHtml, BadFilesAreReportedWithTheirName) {
+  TempDir dir;
+  dir.write("report.json", "{\"a\": 1,");
+  EXPECT_CONTAINS(test::io_error([&] { report_data(dir.path("")); }), "report.json");
+  dir.write("report.json", "{}");
+  dir.write("knitting_map.csv", "course,dir,0\n0,>,Q\n");
+  EXPECT_CONTAINS(test::io_error([&] { report_data(dir.path("")); }), "knitting_map.csv:2");
+  dir.write("knitting_map.csv", "course,dir,0\n0,>,K\n");
+  ReportHtmlOptions opt;
+  opt.quantum_mm = 0.0;
+  EXPECT_CONTAINS(test::invalid_input([&] { report_data(dir.path(""), opt); }), "resolution");
+}
+
+TEST(ReportHtml, PageEmbedsDataAndViewerAndIsWrittenAtomically) {
+  TempDir dir;
+  dir.write("report.json", R"({"note": "</script><script>alert(1)</script>", "x": 1.5})");
+  ReportHtmlOptions opt;
+  opt.title = "a<b";
+  const json d = report_data(dir.path(""), opt);
+  const std::string page = report_html_page(d);
+  // Exactly the two script elements close; the text of report.json cannot.
+  EXPECT_EQ(count(page, "</script>"), 2u);
+  EXPECT_EQ(count(page, "<script"), 2u);
+  EXPECT_CONTAINS(page, "<title>knitforge report: a&lt;b</title>");
+  EXPECT_CONTAINS(page, "\\u003c/script>\\u003cscript>alert(1)\\u003c/script>");
+
+  // The data element holds exactly report_data() (after JSON unescaping).
+  const std::string open = "<script type=\"application/json\" id=\"knitforge-data\">";
+  const size_t a = page.find(open);
+  ASSERT_NE(a, std::string::npos);
+  const size_t b = page.find("</script>", a);
+  EXPECT_EQ(json::parse(page.substr(a + open.size(), b - a - open.size())), d);
+
+  // The viewer is the built web bundle (three.js + the page code).
+  const std::string_view script = report_viewer_script();
+  EXPECT_GT(script.size(), 100000u);
+  EXPECT_NE(script.find("knitforge-data"), std::string_view::npos);
+  EXPECT_NE(page.find(script), std::string::npos);
+
+  write_report_html(dir.path(""), opt);
+  EXPECT_EQ(dir.read("report.html"), page);
+  EXPECT_EQ(dir.num_files(), 2u);  // report.json and report.html, no temporary left
+
+  opt.output = dir.path("elsewhere.html");
+  write_report_html(dir.path(""), opt);
+  EXPECT_EQ(dir.read("elsewhere.html"), page);
+}
+
+}  // namespace
+}  // namespace knitforge
