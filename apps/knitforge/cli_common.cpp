@@ -4,12 +4,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <fmt/core.h>
 
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/io/io_detail.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
-#include "knitforge/io/io_detail.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/ply_format.h"
 #include "knitforge/io/stitch_mesh_ply.h"
@@ -91,6 +93,25 @@ TriMesh load_surface(const std::string& path, const std::string& units) {
     for (Vec3& v : mesh.vertices) v *= s;
   }
   return mesh;
+}
+
+TriMesh load_surface_or_shape(const std::string& input, const std::string& units, double edge,
+                              std::string& description, bool* builtin) {
+  if (builtin) *builtin = false;
+  if (std::filesystem::is_regular_file(input)) {
+    description = input;
+    return load_surface(input, units);
+  }
+  std::string names;
+  for (const auto& n : shape_names()) {
+    if (n == input) {
+      if (builtin) *builtin = true;
+      description = "built-in " + n;
+      return make_shape(n, edge);
+    }
+    names += (names.empty() ? "" : ", ") + n;
+  }
+  throw InvalidInput(fmt::format("{}: no such file, and not a built-in shape ({})", input, names));
 }
 
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value) {

@@ -35,6 +35,9 @@ void add_flatten_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_shortrow_command(CLI::App& app, Action& action);
 void add_report_command(CLI::App& app, Action& action);
+void add_support_command(CLI::App& app, Action& action);
+void add_close_command(CLI::App& app, Action& action);
+void add_thicken_command(CLI::App& app, Action& action);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.
@@ -65,6 +68,13 @@ bool is_stitch_mesh_ply(const std::string& path);
 
 /// Reads a triangle mesh and scales it to millimetres.
 TriMesh load_surface(const std::string& path, const std::string& units);
+
+/// A design command's input surface: a mesh file (scaled to mm by `units`)
+/// or, when no such file exists, a built-in shape meshed at `edge` mm.
+/// `description` receives "built-in NAME" or the path; `builtin` whether it
+/// was a shape. \throw InvalidInput naming the input and the shape names.
+TriMesh load_surface_or_shape(const std::string& input, const std::string& units, double edge,
+                              std::string& description, bool* builtin = nullptr);
 
 /// Adds the standard "--stitch WxH" option.
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);

@@ -86,20 +86,9 @@ void add_flatten_command(CLI::App& app, Action& action) {
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
       Timer t;
-      TriMesh surface;
-      std::string description = o->input;
+      std::string description;
       bool builtin = false;
-      if (!std::filesystem::is_regular_file(o->input)) {
-        for (const auto& n : shape_names()) builtin = builtin || n == o->input;
-        if (!builtin) {
-          throw InvalidInput(
-              fmt::format("flatten: '{}' is neither a mesh file nor a built-in shape ({})", o->input, names));
-        }
-        surface = make_shape(o->input, o->edge);
-        description = "built-in " + o->input;
-      } else {
-        surface = load_surface(o->input, o->units);
-      }
+      TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description, &builtin);
       require_disk(surface, description);
       std::vector<DartSpec> darts;
       if (!o->darts.empty()) darts = parse_darts_json(read_text(o->darts), o->darts, builtin ? 1.0 : scale);

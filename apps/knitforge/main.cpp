@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   cli::add_render_command(app, action);
   cli::add_shortrow_command(app, action);
   cli::add_report_command(app, action);
+  cli::add_support_command(app, action);
+  cli::add_close_command(app, action);
+  cli::add_thicken_command(app, action);
 
   try {
     app.parse(argc, argv);

@@ -48,18 +48,6 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
   return out;
 }
 
-/// The surface: a built-in shape name or a mesh file (scaled to mm).
-TriMesh load_input(const std::string& input, const std::string& units, std::string& description) {
-  for (const auto& n : shape_names()) {
-    if (n == input && !std::filesystem::exists(input)) {
-      description = "built-in " + n;
-      return make_shape(n);
-    }
-  }
-  description = input;
-  return load_surface(input, units);
-}
-
 /// --source TEXT (coordinates in the input's units, scaled by `scale`).
 GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
   if (text.empty()) {
@@ -157,7 +145,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                                  "3D surface -> knittable short-row stitch mesh and knitting map (seed 3.2)");
   struct Opts {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", source, cut;
-    double diffusion = -1.0, lambda = -1.0;
+    double diffusion = -1.0, lambda = -1.0, edge = kDefaultShapeEdgeLength;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
   };
   auto o = std::make_shared<Opts>();
@@ -173,6 +161,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                   "Geodesic source: plane:NX,NY,NZ,D (default: plane x = centre of the bounding box), "
                   "boundary:BEGIN,END[,LOOP] (arc-length fractions), boundary-vertices:I,J,..., vertex:I, "
                   "polyline:FILE.obj");
+  cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
@@ -190,7 +180,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       const double scale = unit_scale(o->units);
       std::string description;
       Timer t;
-      TriMesh surface = load_input(o->input, o->units, description);
+      TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       int cut_edges = 0;
       if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
       require_disk(surface, description);

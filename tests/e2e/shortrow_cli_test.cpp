@@ -14,7 +14,7 @@ using namespace knitforge_e2e;
 
 TEST_F(Cli, ShortRowHemisphereWritesEveryOutput) {
   const std::string out = path("hemi");
-  const CliRun r = run("shortrow hemisphere --stitch 3.2x2.2 -o " + out + " --json");
+  const CliRun r = run("shortrow hemisphere --edge 4 --stitch 3.2x2.2 -o " + out + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* f : {"stitch_mesh.ply", "knitting_map.csv", "knitting_map.png", "knitting_map.svg",
                         "wales.obj", "field.ply", "target.ply", "relaxed.ply", "shape_error.ply",

@@ -1,8 +1,9 @@
 #include "knitforge/geometry/geodesic_propagation.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <functional>
+#include <cstring>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -118,7 +119,7 @@ GeodesicPropagation::GeodesicPropagation(const GeodesicGeometry& g, bool track_b
       dist_(g.mesh->num_vertices(), kInf),
       vorigin_(g.mesh->num_vertices(), Origin::None),
       vorigin_id_(g.mesh->num_vertices(), -1),
-      edge_head_(g.he.num_halfedges(), -1),
+      merge_(size_t{1} << 12, MergeSlot{0, -1}),
       track_boundary_(track_boundary) {}
 
 Vec2 GeodesicPropagation::corner(int h, int k) const {
@@ -148,8 +149,68 @@ void GeodesicPropagation::update_vertex(int v, double d, Origin origin, int id) 
   vorigin_[v] = origin;
   vorigin_id_[v] = id;
   if (track_boundary_ && g_.is_boundary[v]) boundary_candidate(d, -1, 0.0, Origin::Vertex, v);
-  heap_.push_back({d, -(v + 1)});
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  queue_.push({d, -(v + 1)});
+}
+
+uint64_t GeodesicPropagation::RadixQueue::bits(double key) {
+  uint64_t u;
+  std::memcpy(&u, &key, sizeof u);
+  // Order-preserving map of IEEE doubles to unsigned integers.
+  return (u >> 63) ? ~u : (u | (uint64_t{1} << 63));
+}
+
+int GeodesicPropagation::RadixQueue::bucket(uint64_t k) const {
+  return k <= last_ ? 0 : 64 - std::countl_zero(k ^ last_);
+}
+
+void GeodesicPropagation::RadixQueue::push(const QueueItem& item) {
+  buckets_[bucket(bits(item.key))].push_back(item);
+  ++size_;
+}
+
+GeodesicPropagation::QueueItem GeodesicPropagation::RadixQueue::pop() {
+  if (buckets_[0].empty()) {
+    int i = 1;
+    while (buckets_[i].empty()) ++i;
+    std::vector<QueueItem>& b = buckets_[i];
+    uint64_t lo = bits(b[0].key);
+    for (const QueueItem& it : b) lo = std::min(lo, bits(it.key));
+    last_ = lo;
+    for (const QueueItem& it : b) buckets_[bucket(bits(it.key))].push_back(it);
+    b.clear();
+  }
+  const QueueItem item = buckets_[0].back();
+  buckets_[0].pop_back();
+  --size_;
+  return item;
+}
+
+int& GeodesicPropagation::merge_head(int h, const Window& w) {
+  const uint64_t root = (static_cast<uint64_t>(static_cast<uint32_t>(w.origin_id)) << 4) |
+                        (static_cast<uint64_t>(w.origin) << 2) | (static_cast<uint64_t>(w.aux & 1) << 1) |
+                        static_cast<uint64_t>(w.line);
+  const uint64_t key = ((static_cast<uint64_t>(h) << 36) ^ root) + 1;
+  // Multiplicative hashing: the top bits of key * 2^64/φ.
+  auto slot = [this](uint64_t k) {
+    return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> (64 - std::countr_zero(merge_.size())));
+  };
+  if (2 * (merge_used_ + 1) > merge_.size()) {  // grow
+    std::vector<MergeSlot> old(merge_.size() * 2, MergeSlot{0, -1});
+    old.swap(merge_);
+    for (const MergeSlot& m : old) {
+      if (m.key == 0) continue;
+      size_t i = slot(m.key);
+      while (merge_[i].key != 0) i = (i + 1) & (merge_.size() - 1);
+      merge_[i] = m;
+    }
+  }
+  size_t i = slot(key);
+  while (merge_[i].key != 0 && merge_[i].key != key) i = (i + 1) & (merge_.size() - 1);
+  if (merge_[i].key == 0) {
+    merge_[i] = {key, -1};
+    ++merge_used_;
+  }
+  return merge_[i].head;
 }
 
 void GeodesicPropagation::boundary_candidate(double d, int halfedge, double t, Origin origin, int id) {
@@ -159,20 +220,56 @@ void GeodesicPropagation::boundary_candidate(double d, int halfedge, double t, O
 
 // True when a vertex of the faces on both sides of the window's edge gives a
 // shorter path to every point of the window (see the header).
-bool GeodesicPropagation::dominated(const Window& w, const Vec2* extra, int extra_vertex) const {
+bool GeodesicPropagation::dominated(Window& w, const Vec2* extra, int extra_vertex) const {
   const int h = w.h;
   const double L = g_.len[h];
-  auto slack = [&](int) { return -g_.eps; };
-  const Vec2 p0(w.b0, 0.0), p1(w.b1, 0.0);
-  const double d0 = window_distance(w, p0), d1 = window_distance(w, p1);
+  const double eps = g_.eps;
   const int a = g_.he.from(h), b = g_.he.to(h);
-  if (dist_[a] + w.b1 < d1 + slack(a)) return true;
-  if (dist_[b] + (L - w.b0) < d0 + slack(b)) return true;
-  double dmin = w.key;
+  const double da = dist_[a], db = dist_[b];
+  const double sx = w.s.x(), sy = w.s.y();
+  // f(x) = d(x) - x is non-increasing and d(x) + x non-decreasing along the
+  // edge (|d'| <= 1): the points dominated by a (d(x) > da + x + eps) form
+  // an interval at the start, those dominated by b one at the end.
+  auto dist_at = [&](double x) { return w.line ? sx * x + w.sigma : std::sqrt((x - sx) * (x - sx) + sy * sy) + w.sigma; };
+  const double d0 = dist_at(w.b0), d1 = dist_at(w.b1);
+  if (d1 > da + w.b1 + eps) return true;
+  if (d0 > db + (L - w.b0) + eps) return true;
+  bool trimmed = false;
+  if (d0 > da + w.b0 + eps) {  // solve d(x) - x = da + eps
+    double x;
+    const double k = da + eps - w.sigma;
+    if (w.line) {
+      x = sx < 1.0 ? k / (sx - 1.0) : w.b0;
+    } else {
+      const double den = 2.0 * (sx + k);
+      x = den > 0.0 ? (sx * sx + sy * sy - k * k) / den : w.b0;
+    }
+    if (x > w.b0 && x < w.b1) {
+      w.b0 = x;
+      trimmed = true;
+    }
+  }
+  if (d1 > db + (L - w.b1) + eps) {  // solve d(x) + x = db + L + eps
+    double x;
+    const double k = db + L + eps - w.sigma;
+    if (w.line) {
+      x = sx > -1.0 ? k / (sx + 1.0) : w.b1;
+    } else {
+      const double den = 2.0 * (k - sx);
+      x = den > 0.0 ? (k * k - sx * sx - sy * sy) / den : w.b1;
+    }
+    if (x > w.b0 && x < w.b1) {
+      w.b1 = x;
+      trimmed = true;
+    }
+  }
+  if (trimmed && !prepare(w)) return true;
+  const Vec2 p0(w.b0, 0.0), p1(w.b1, 0.0);
+  const double dmin = w.key;
   auto check = [&](const Vec2& pos, int v) {
     const double dv = dist_[v];
     if (dv == kInf) return false;
-    return dv + std::max((pos - p0).norm(), (pos - p1).norm()) < dmin + slack(v);
+    return dv + std::sqrt(std::max((pos - p0).squaredNorm(), (pos - p1).squaredNorm())) < dmin - eps;
   };
   if (check(g_.apex[h], g_.he.to(g_.he.next(h)))) return true;
   if (extra && check(*extra, extra_vertex)) return true;
@@ -188,7 +285,7 @@ bool GeodesicPropagation::prepare(Window& w) const {
     w.key = std::min(w.s.x() * w.b0, w.s.x() * w.b1) + w.sigma;
   } else {
     const double x = std::clamp(w.s.x(), w.b0, w.b1);
-    w.key = std::hypot(x - w.s.x(), w.s.y()) + w.sigma;
+    w.key = std::sqrt((x - w.s.x()) * (x - w.s.x()) + w.s.y() * w.s.y()) + w.sigma;
   }
   return true;
 }
@@ -200,20 +297,19 @@ bool GeodesicPropagation::prepare(Window& w) const {
 void GeodesicPropagation::push_window(const Window& w) {
   const double L = g_.len[w.h];
   const double ftol = 1e-9 * g_.scale;
+  int& head = merge_head(w.h, w);  // windows on edge w.h with the same root
   int prev = -1;
-  for (int j = edge_head_[w.h]; j >= 0; j = windows_[j].next_on_edge) {
+  for (int j = head; j >= 0; j = windows_[j].next_on_edge) {
     Window& o = windows_[j];
     if (o.done) {  // unlink: the list holds pending windows only
       if (prev < 0) {
-        edge_head_[w.h] = o.next_on_edge;
+        head = o.next_on_edge;
       } else {
         windows_[prev].next_on_edge = o.next_on_edge;
       }
       continue;
     }
     prev = j;
-    if (o.line != w.line || o.origin != w.origin || o.origin_id != w.origin_id || o.aux != w.aux)
-      continue;
     if (std::abs(o.sigma - w.sigma) > ftol) continue;
     if (w.line ? (o.s - w.s).norm() > 1e-12 : (o.s - w.s).norm() > ftol) continue;
     if (w.b0 > o.b1 + 1e-9 * L || w.b1 < o.b0 - 1e-9 * L) continue;
@@ -221,17 +317,15 @@ void GeodesicPropagation::push_window(const Window& w) {
     o.b1 = std::max(o.b1, w.b1);
     if (w.key < o.key) {
       o.key = w.key;
-      heap_.push_back({o.key, j});
-      std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+      queue_.push({o.key, j});
     }
     return;
   }
+  const int id = static_cast<int>(windows_.size());
   windows_.push_back(w);
-  const int id = static_cast<int>(windows_.size()) - 1;
-  windows_.back().next_on_edge = edge_head_[w.h];
-  edge_head_[w.h] = id;
-  heap_.push_back({w.key, id});
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  windows_.back().next_on_edge = head;
+  head = id;
+  queue_.push({w.key, id});
 }
 
 // Child k (1: edge next(h) = B->C, 2: edge prev(h) = C->A) of window `parent`
@@ -646,10 +740,8 @@ void GeodesicPropagation::add_point(const SurfacePoint& p, const std::vector<con
 }
 
 void GeodesicPropagation::run() {
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-    const QueueItem item = heap_.back();
-    heap_.pop_back();
+  while (!queue_.empty()) {
+    const QueueItem item = queue_.pop();
     if (item.id < 0) {
       const int v = -item.id - 1;
       if (item.key != dist_[v]) continue;  // stale
@@ -658,7 +750,7 @@ void GeodesicPropagation::run() {
     }
     Window& w = windows_[item.id];
     if (w.done) continue;
-    w.done = true;
+    w.done = true;  // (trimmed in place below: the cut parts are dominated)
     if (dominated(w, nullptr, -1)) continue;
     propagate(item.id);
   }

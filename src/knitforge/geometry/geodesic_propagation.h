@@ -15,7 +15,12 @@
 /// propagated across the next face into at most two child windows, and a
 /// child is dropped when one vertex of the two faces at its edge already
 /// gives a shorter path to every point of it (the filter of Xin & Wang, with
-/// bounds that are valid for any point of the interval). Vertices whose total
+/// bounds that are valid for any point of the interval). A window is also
+/// trimmed to the part of its interval where neither end vertex of its edge
+/// gives a shorter path (exact: the distance minus the distance along the
+/// edge from an end is monotone over the interval, so the dominated part is
+/// a sub-interval at that end whose limit solves a linear or quadratic
+/// equation). Vertices whose total
 /// angle is at least 2π (saddles, flat vertices), boundary vertices with an
 /// angle of at least π, and vertices at degenerate faces emit new point
 /// windows (geodesics can pass through them). Vertex distances are also
@@ -30,6 +35,8 @@
 /// any vertex, boundary point or face point by walking the window's straight
 /// backward ray face by face in the unfolding.
 
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -73,7 +80,7 @@ struct Window {
   char aux = 0;        ///< seeds: 0 source point p, 1 source point q
   Origin origin = Origin::None;  ///< the root: Seed or Vertex (pseudo-source)
   int origin_id = -1;  ///< seed index or pseudo-source vertex
-  int next_on_edge = -1;  ///< previous window on the same half-edge (list)
+  int next_on_edge = -1;  ///< previous window with the same half-edge and root (merge list)
   double b0 = 0.0, b1 = 0.0;  ///< interval along h, from from(h)
   Vec2 s = Vec2::Zero();      ///< point: unfolded source (y < 0); line: unit ray direction (y > 0)
   double sigma = 0.0;         ///< point: offset; line: c in n·x + c
@@ -128,15 +135,39 @@ class GeodesicPropagation {
   struct QueueItem {
     double key;
     int id;  // >= 0 window, < 0: vertex -(id + 1)
-    bool operator>(const QueueItem& o) const { return key > o.key || (key == o.key && id > o.id); }
   };
+  /// Monotone priority queue (radix heap on the order-preserving bit pattern
+  /// of the key): the keys pushed while an item is processed are never
+  /// smaller than its key (distances grow along rays and edges); a key that
+  /// rounding puts below the last popped one is treated as equal to it.
+  class RadixQueue {
+   public:
+    bool empty() const { return size_ == 0; }
+    void push(const QueueItem& item);
+    QueueItem pop();  ///< \pre !empty()
+   private:
+    static uint64_t bits(double key);
+    int bucket(uint64_t k) const;
+    std::array<std::vector<QueueItem>, 65> buckets_;
+    uint64_t last_ = 0;
+    size_t size_ = 0;
+  };
+  /// Open-addressing map (half-edge, root) -> last pending window with that
+  /// half-edge and root: the candidates for merging (push_window()).
+  struct MergeSlot {
+    uint64_t key;  // 0: empty
+    int head;
+  };
+  int& merge_head(int h, const Window& w);
 
   void seed_face(int f, const Vec3& bp, const Vec3& bq, bool point, const std::vector<Vec2>& cons);
   void check_point(const SurfacePoint& p) const;
   void update_vertex(int v, double d, Origin origin, int id);
   bool prepare(Window& w) const;  // clamps the interval, sets the key; false when empty
   void push_window(const Window& w);
-  bool dominated(const Window& w, const Vec2* extra, int extra_vertex) const;
+  /// Trims w to the part not dominated by the ends of its edge; true when
+  /// nothing is left or a vertex of the faces at the edge dominates it all.
+  bool dominated(Window& w, const Vec2* extra, int extra_vertex) const;
   void propagate(int wi);
   void emit_vertex(int v);
   double back_angle(int v) const;
@@ -156,9 +187,10 @@ class GeodesicPropagation {
   std::vector<Origin> vorigin_;
   std::vector<int> vorigin_id_;
   std::vector<Window> windows_;
-  std::vector<int> edge_head_;  ///< per half-edge: last window on it
+  std::vector<MergeSlot> merge_;  ///< size a power of 2, at most half full
+  size_t merge_used_ = 0;
   std::vector<Seed> seeds_;
-  std::vector<QueueItem> heap_;
+  RadixQueue queue_;
   BoundaryHit boundary_;
   bool track_boundary_ = false;
 };

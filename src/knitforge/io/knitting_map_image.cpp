@@ -1,15 +1,14 @@
 #include "knitforge/io/knitting_map_image.h"
 
 #include <array>
-#include <csetjmp>
 #include <ostream>
 #include <set>
 
 #include <fmt/core.h>
-#include <png.h>
 
 #include "knitforge/io/colours.h"
 #include "knitforge/io/io_detail.h"
+#include "knitforge/io/png_image.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/errors.h"
 
@@ -71,35 +70,6 @@ bool inside(const std::array<std::array<double, 2>, 3>& t, double x, double y) {
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
 
-void png_append(png_structp png, png_bytep data, png_size_t n) {
-  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
-}
-void png_flush(png_structp) {}
-
-// Encodes 8-bit RGB rows; false when libpng reports an error. Everything
-// with a destructor lives outside this function (setjmp).
-bool encode_png(const std::vector<png_bytep>& rows, int w, int h, std::string* out) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  if (!png) return false;
-  png_infop info = png_create_info_struct(png);
-  if (!info) {
-    png_destroy_write_struct(&png, nullptr);
-    return false;
-  }
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return false;
-  }
-  png_set_write_fn(png, out, png_append, png_flush);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  png_write_image(png, const_cast<png_bytepp>(rows.data()));
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return true;
-}
-
 std::string hex(Rgb c) { return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b); }
 
 }  // namespace
@@ -114,7 +84,11 @@ void write_knitting_map_png(const std::string& path, const KnittingMap& map, con
                                    path, map.rows, map.cols, s, w64, h64));
   }
   const int w = static_cast<int>(w64), h = static_cast<int>(h64);
-  std::vector<uint8_t> pixels(static_cast<size_t>(w) * h * 3, 255);
+  RgbImage image;
+  image.width = w;
+  image.height = h;
+  image.pixels.assign(static_cast<size_t>(w) * h * 3, 255);
+  std::vector<uint8_t>& pixels = image.pixels;
   auto put = [&](int x, int y, Rgb c) {
     uint8_t* p = &pixels[(static_cast<size_t>(y) * w + x) * 3];
     p[0] = c.r;
@@ -142,12 +116,7 @@ void write_knitting_map_png(const std::string& path, const KnittingMap& map, con
   for (int x = 0; x < w; x += s) {
     for (int y = 0; y < h; ++y) put(x, y, kGridColour);
   }
-  std::vector<png_bytep> rows(h);
-  for (int y = 0; y < h; ++y) rows[y] = &pixels[static_cast<size_t>(y) * w * 3];
-  std::string encoded;
-  if (!encode_png(rows, w, h, &encoded)) throw IOError(fmt::format("{}: PNG encoding failed", path));
-  write_file_atomically(
-      path, [&](std::ostream& o) { o.write(encoded.data(), static_cast<std::streamsize>(encoded.size())); }, true);
+  write_png(path, image);
 }
 
 std::string knitting_map_svg(const KnittingMap& map, const MapImageOptions& options) {
