@@ -1,4 +1,6 @@
 // End-to-end runs of `knitforge shortrow` (issue: short-row design route).
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
@@ -62,4 +64,36 @@ TEST_F(Cli, ShortRowBadInputsExitOneAndWriteNothing) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("cut"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out + "/report.json"));
+}
+
+TEST_F(Cli, ShortRowCutsANonDiskOpenWhenGivenACut) {
+  // A flat annulus (radii 20 and 40 mm) is not a disk: the error says to cut
+  // it; with a radial cut from the inner to the outer rim it becomes one.
+  TriMesh ring;
+  const int n = 48, m = 6;
+  for (int j = 0; j <= m; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979 * (i + 0.5) / n, r = 20.0 + 20.0 * j / m;
+      ring.vertices.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    }
+  }
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int a = j * n + i, b = j * n + (i + 1) % n, c = a + n, d = b + n;
+      ring.faces.push_back({a, b, d});
+      ring.faces.push_back({a, d, c});
+    }
+  }
+  write_mesh(path("ring.obj"), ring);
+  const std::string out = path("ring");
+  CliRun r = run("shortrow " + path("ring.obj") + " --no-evaluate --source plane:0,1,0,0 -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("cut"), std::string::npos) << r.err;
+  write_polylines_obj(path("cut.obj"), {{Vec3(19.0, 0.0, 0.0), Vec3(30.0, 0.0, 0.0), Vec3(41.0, 0.0, 0.0)}});
+  r = run("shortrow " + path("ring.obj") + " --no-evaluate --source plane:0,1,0,0 --cut " + path("cut.obj") +
+          " -o " + out);
+  EXPECT_NE(r.err.find("geodesic field"), std::string::npos) << r.err;  // got past the topology check
+  const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_GT(report["input"]["user_cut_edges"].get<int>(), 0);
+  EXPECT_GT(report["counts"]["stitches"].get<int>(), 0);
 }

@@ -174,6 +174,18 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
         if (t) usable = false;
         t = 1;
       }
+      // The cells a neighbour pair skips (collapsed) must hold no stitch.
+      auto free_cell = [&](int r, int c) { return !taken[static_cast<size_t>(r) * w + c]; };
+      for (int s = 0; usable && s < n; ++s) {
+        const int c = mesh.stitches[s].wale - lo;
+        const int right = adj.neighbor(s, Side::Right), top = adj.neighbor(s, Side::Top);
+        if (right >= 0) {
+          for (int cc = c + 1; usable && cc < mesh.stitches[right].wale - lo; ++cc) usable = free_cell(srow[s], cc);
+        }
+        if (top >= 0) {
+          for (int rr = srow[s] + 1; usable && rr < srow[top]; ++rr) usable = free_cell(rr, c);
+        }
+      }
     }
     if (usable) {
       ncols = hi - lo + 1;
