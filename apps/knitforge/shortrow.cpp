@@ -145,7 +145,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                                  "3D surface -> knittable short-row stitch mesh and knitting map (seed 3.2)");
   struct Opts {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", source, cut;
-    double diffusion = -1.0, lambda = -1.0, edge = kDefaultShapeEdgeLength;
+    double diffusion = -1.0, diffusion_length = -1.0, lambda = -1.0, edge = kDefaultShapeEdgeLength;
+    int relax_iterations = -1;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
   };
   auto o = std::make_shared<Opts>();
@@ -167,9 +168,15 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--diffusion-length", o->diffusion_length,
+                  "Length (mm) the apex distance D is divided by in exp(-D^2) (default: the stitch width)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--lambda", o->lambda, "Initial bridge length limit in mm (default width + 2 x height)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  cmd->add_option("--relax-iterations", o->relax_iterations,
+                  "Shape-Up iterations of the evaluation's relaxation (default 60)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
@@ -191,7 +198,9 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       opt.params = params;
       if (o->diffusion >= 0) opt.tessellation.mu = o->diffusion;
       if (o->lambda > 0) opt.tessellation.lambda = o->lambda;
+      if (o->diffusion_length > 0) opt.tessellation.diffusion_length = o->diffusion_length;
       opt.evaluate = !o->no_evaluate;
+      if (o->relax_iterations > 0) opt.evaluation.relax.max_iterations = o->relax_iterations;
       opt.progress = [](const std::string& stage) { note(stage + " ..."); };
       const ShortRowDesign d = design_short_rows(surface, source, opt);
 
@@ -287,7 +296,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
           {"stitch_height_mm", params.stitch_height},
           {"lambda_mm", o->lambda > 0 ? o->lambda : params.stitch_width + 2 * params.stitch_height},
           {"diffusion_mu_mm", o->diffusion >= 0 ? o->diffusion : 100 * params.stitch_width},
-          {"diffusion_length_mm", params.stitch_width}};
+          {"diffusion_length_mm", o->diffusion_length > 0 ? o->diffusion_length : params.stitch_width}};
       report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
                           {"quads", types[static_cast<int>(StitchType::Knit)]},
                           {"short_row_ends", short_row_ends},
