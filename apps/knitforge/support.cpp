@@ -47,9 +47,10 @@ std::string size_text(const TriMesh& mesh) {
 
 void warn_flips(int flipped, const std::string& what) {
   if (flipped > 0) {
-    note(fmt::format("warning: {} faces turned inside out: the {} exceeds the local radius of curvature, "
-                     "so the solid intersects itself there; use a smaller value or a smoother surface",
-                     flipped, what));
+    note(
+        fmt::format("warning: {} faces turned inside out: the {} exceeds the local radius of curvature, "
+                    "so the solid intersects itself there; use a smaller value or a smoother surface",
+                    flipped, what));
   }
 }
 
@@ -87,8 +88,9 @@ void add_support_command(CLI::App& app, Action& action) {
       so.base = o->base == "rectangle" ? SupportBase::Rectangle : SupportBase::Projected;
       so.base_margin = o->margin;
       const SupportObject s = support_object(surface, so);
-      if (s.reoriented) note("the surface's normals pointed down: reoriented so that the support lies below it");
-      warn_flips(s.flipped_faces, "offset");
+      if (s.reoriented)
+        note("the surface's normals pointed down: reoriented so that the support lies below it");
+      warn_flips(s.flipped_faces, o->thickness > 0.0 ? "offset or shell thickness" : "offset");
       write_mesh(o->output, s.solid);
       note(fmt::format("support of {}: {} -> {}", description, size_text(s.solid), o->output));
       return 0;
@@ -111,8 +113,9 @@ void add_close_command(CLI::App& app, Action& action) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--offset", o->offset, "Distance of the result from the input (mm, default alpha / 30)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--no-cap", o->no_cap,
-                "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
+  cmd->add_flag(
+      "--no-cap", o->no_cap,
+      "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
   cmd->callback([=, &action] {
     action = [=]() -> int {
       std::string description;
@@ -124,8 +127,8 @@ void add_close_command(CLI::App& app, Action& action) {
       note("wrapping ...");
       const AlphaCloseResult r = alpha_close(input, ao);
       write_mesh(o->output, r.mesh);
-      note(fmt::format("closed {} (alpha {:.3g} mm, offset {:.3g} mm, {} holes capped): {} -> {}", description,
-                       r.alpha, r.offset, r.capped_holes, size_text(r.mesh), o->output));
+      note(fmt::format("closed {} (alpha {:.3g} mm, offset {:.3g} mm, holes capped: {}): {} -> {}",
+                       description, r.alpha, r.offset, r.capped_holes, size_text(r.mesh), o->output));
       return 0;
     };
   });
@@ -149,7 +152,7 @@ void add_thicken_command(CLI::App& app, Action& action) {
       const TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       ThickenOptions to;
       to.thickness = o->thickness;
-      to.side = o->side == "outside" ? ThickenSide::Outside
+      to.side = o->side == "outside"  ? ThickenSide::Outside
                 : o->side == "inside" ? ThickenSide::Inside
                                       : ThickenSide::Both;
       const ThickenResult r = thicken_surface(surface, to);

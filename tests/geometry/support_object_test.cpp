@@ -58,9 +58,9 @@ TEST(SupportObject, HemisphereOnProjectedBase) {
 }
 
 TEST(SupportObject, ReorientsADownwardSurfaceAndBuildsTheRectangleBase) {
-  TriMesh grid = test::square_grid(6, 10.0);  // 60 x 60 at z = 0
+  TriMesh grid = test::square_grid(6, 10.0);                                  // 60 x 60 at z = 0
   for (auto& p : grid.vertices) p.z() = 0.002 * (p.x() - 30) * (p.x() - 30);  // gentle trough
-  for (auto& t : grid.faces) std::swap(t[1], t[2]);  // normals down
+  for (auto& t : grid.faces) std::swap(t[1], t[2]);                           // normals down
   SupportOptions o;
   o.offset = 0.0;
   o.base = SupportBase::Rectangle;
@@ -113,6 +113,12 @@ TEST(SupportObject, RejectsBadInput) {
   o.up = Vec3(1, 0, 0);  // edge-on
   EXPECT_THROW(support_object(grid, o), InvalidInput);
   EXPECT_THROW(support_object(TriMesh{}, {}), InvalidInput);
+  // A closed surface has no boundary loop for a base; a shell works.
+  EXPECT_THROW(support_object(test::tetrahedron(), {}), TopologyError);
+  o = {};
+  o.offset = 0.0;
+  o.shell_thickness = 0.1;
+  EXPECT_GT(enclosed_volume(support_object(test::tetrahedron(), o).solid), 0.0);
   // An annulus has two boundary loops.
   EXPECT_THROW(support_object(test::ring_grid(2, 16, false), {}), TopologyError);
 }

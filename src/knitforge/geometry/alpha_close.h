@@ -42,10 +42,10 @@ struct AlphaCloseResult {
   /// exactly two faces); may have several components if the input has
   /// parts farther apart than about 2 alpha.
   TriMesh mesh;
-  double alpha = 0.0;   ///< the alpha used (mm)
-  double offset = 0.0;  ///< the offset used (mm)
+  double alpha = 0.0;    ///< the alpha used (mm)
+  double offset = 0.0;   ///< the offset used (mm)
   int capped_holes = 0;  ///< boundary loops of the input closed before wrapping
-  double volume = 0.0;  ///< enclosed volume of `mesh` (mm³)
+  double volume = 0.0;   ///< enclosed volume of `mesh` (mm³)
 };
 
 /// Wraps `input` (a triangle mesh; or, when it has no faces, the point set

@@ -58,16 +58,17 @@ double enclosed_volume(const TriMesh& mesh) {
 
 AlphaCloseResult alpha_close(const TriMesh& input, const AlphaCloseOptions& options) {
   if (!std::isfinite(options.alpha) || options.alpha < 0.0) {
-    throw InvalidInput(fmt::format("alpha_close: alpha must be a finite length >= 0 mm (0: automatic), got {}",
-                                   options.alpha));
+    throw InvalidInput(fmt::format(
+        "alpha_close: alpha must be a finite length >= 0 mm (0: automatic), got {}", options.alpha));
   }
   if (!std::isfinite(options.offset) || options.offset < 0.0) {
-    throw InvalidInput(fmt::format("alpha_close: the offset must be a finite length >= 0 mm (0: automatic), got {}",
-                                   options.offset));
+    throw InvalidInput(fmt::format(
+        "alpha_close: the offset must be a finite length >= 0 mm (0: automatic), got {}", options.offset));
   }
   const bool point_set = input.faces.empty();
   if (point_set && input.num_vertices() < 4) {
-    throw InvalidInput(fmt::format("alpha_close: a point set needs at least 4 points (got {})", input.num_vertices()));
+    throw InvalidInput(
+        fmt::format("alpha_close: a point set needs at least 4 points (got {})", input.num_vertices()));
   }
   for (int v = 0; v < input.num_vertices(); ++v) {
     if (!input.vertices[v].allFinite()) {
@@ -77,8 +78,8 @@ AlphaCloseResult alpha_close(const TriMesh& input, const AlphaCloseOptions& opti
   for (int f = 0; f < input.num_faces(); ++f) {
     for (int v : input.faces[f]) {
       if (v < 0 || v >= input.num_vertices()) {
-        throw InvalidInput(fmt::format("alpha_close: face {} uses vertex {}, outside [0, {})", f, v,
-                                       input.num_vertices()));
+        throw InvalidInput(
+            fmt::format("alpha_close: face {} uses vertex {}, outside [0, {})", f, v, input.num_vertices()));
       }
     }
   }
@@ -106,7 +107,8 @@ AlphaCloseResult alpha_close(const TriMesh& input, const AlphaCloseOptions& opti
     std::vector<std::array<std::size_t, 3>> faces;
     faces.reserve(work.faces.size());
     for (const auto& t : work.faces) {
-      faces.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+      faces.push_back(
+          {static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
     }
     CGAL::alpha_wrap_3(points, faces, result.alpha, result.offset, wrap);
   }

@@ -43,15 +43,15 @@ struct LoopTessellationOptions {
   LoopTessellationCost cost = LoopTessellationCost::BridgeLength;
   /// Try every start alignment while (shorter loop size)² x (longer loop
   /// size) is at most this; above it, use the seed's shortest-bridge rule.
-  double max_exhaustive_work = 4.0e8;
+  double max_exhaustive_work = 5.0e7;
 };
 
 /// A band between two loops. Triangle vertex indices: 0..m-1 are a_0..a_{m-1},
 /// m..m+n-1 are b_0..b_{n-1}.
 struct LoopTessellation {
   std::vector<std::array<int, 3>> triangles;  ///< m + n triangles
-  double cost = 0.0;     ///< the minimised objective (mm or mm²)
-  int start_a = 0;       ///< start bridge a_{start_a} b_{start_b}
+  double cost = 0.0;                          ///< the minimised objective (mm or mm²)
+  int start_a = 0;                            ///< start bridge a_{start_a} b_{start_b}
   int start_b = 0;
   bool exhaustive = true;  ///< every start alignment was tried
 };

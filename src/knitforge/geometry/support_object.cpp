@@ -26,7 +26,8 @@ double signed_area(const std::vector<Vec2>& poly) {
 bool segments_cross(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
   const double d1 = cross2(p2 - p1, q1 - p1), d2 = cross2(p2 - p1, q2 - p1);
   const double d3 = cross2(q2 - q1, p1 - q1), d4 = cross2(q2 - q1, p2 - q1);
-  return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
+  return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
+         ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
 }
 
 /// Index of the first pair of non-adjacent polygon edges that cross, or -1.
@@ -101,10 +102,12 @@ SupportObject support_object(const TriMesh& surface, const SupportOptions& optio
     throw InvalidInput(fmt::format("support_object: the offset must be >= 0 mm (got {})", options.offset));
   }
   if (bad(options.base_height) || options.base_height <= 0.0) {
-    throw InvalidInput(fmt::format("support_object: the base height must be > 0 mm (got {})", options.base_height));
+    throw InvalidInput(
+        fmt::format("support_object: the base height must be > 0 mm (got {})", options.base_height));
   }
   if (bad(options.base_margin) || options.base_margin < 0.0) {
-    throw InvalidInput(fmt::format("support_object: the base margin must be >= 0 mm (got {})", options.base_margin));
+    throw InvalidInput(
+        fmt::format("support_object: the base margin must be >= 0 mm (got {})", options.base_margin));
   }
   if (bad(options.shell_thickness) || options.shell_thickness < 0.0) {
     throw InvalidInput(
@@ -122,8 +125,8 @@ SupportObject support_object(const TriMesh& surface, const SupportOptions& optio
   for (const auto& t : surface.faces) {
     for (int v : t) {
       if (v < 0 || v >= surface.num_vertices()) {
-        throw InvalidInput(fmt::format("support_object: a face uses vertex {}, outside [0, {})", v,
-                                       surface.num_vertices()));
+        throw InvalidInput(
+            fmt::format("support_object: a face uses vertex {}, outside [0, {})", v, surface.num_vertices()));
       }
       index[v] = 0;
     }
@@ -144,31 +147,38 @@ SupportObject support_object(const TriMesh& surface, const SupportOptions& optio
     area_sum += av;
     area += av.norm();
   }
-  if (!(std::abs(area_sum.dot(up)) > 1e-3 * area)) {
-    throw InvalidInput(
-        "support_object: the surface is edge-on when seen along the up direction (its projected area "
-        "is zero); rotate it so that the knitted side faces up");
-  }
-  if (area_sum.dot(up) < 0.0) {
-    result.reoriented = true;
-    for (auto& t : top.faces) std::swap(t[1], t[2]);
-  }
-  const Halfedges he = build_halfedges(top.num_vertices(), top.faces);
-  const TriMesh offset = offset_surface(top, -options.offset, &result.flipped_faces);
-
-  if (options.shell_thickness > 0.0) {
-    ThickenResult shell = thicken_surface(offset, {options.shell_thickness, ThickenSide::Inside});
-    result.solid = std::move(shell.solid);
-    return result;
-  }
-
-  const auto loops = he.boundary_loops();
-  if (loops.size() != 1) {
+  Halfedges he = build_halfedges(top.num_vertices(), top.faces);
+  auto loops = he.boundary_loops();
+  if (options.shell_thickness == 0.0 && loops.size() != 1) {
     throw TopologyError(fmt::format(
         "support_object: the surface has {} boundary loops; a support with a base needs exactly one "
         "(a disk-like surface). Close the other holes, or use a shell support (shell thickness > 0)",
         loops.size()));
   }
+  // A closed surface (shell only) keeps its orientation; an open one is
+  // oriented so that its normals point away from the base.
+  if (!loops.empty()) {
+    if (!(std::abs(area_sum.dot(up)) > 1e-3 * area)) {
+      throw InvalidInput(
+          "support_object: the surface is edge-on when seen along the up direction (its projected area "
+          "is zero); rotate it so that the knitted side faces up");
+    }
+    if (area_sum.dot(up) < 0.0) {
+      result.reoriented = true;
+      for (auto& t : top.faces) std::swap(t[1], t[2]);
+      he = build_halfedges(top.num_vertices(), top.faces);
+      loops = he.boundary_loops();
+    }
+  }
+  const TriMesh offset = offset_surface(top, -options.offset, &result.flipped_faces);
+
+  if (options.shell_thickness > 0.0) {
+    ThickenResult shell = thicken_surface(offset, {options.shell_thickness, ThickenSide::Inside});
+    result.flipped_faces += shell.flipped_faces;
+    result.solid = std::move(shell.solid);
+    return result;
+  }
+
   // A = the boundary loop reversed (so the band glues to the surface).
   std::vector<int> a_ids(loops[0].rbegin(), loops[0].rend());
   std::vector<Vec3> a;
@@ -229,7 +239,8 @@ SupportObject support_object(const TriMesh& surface, const SupportOptions& optio
   const int base0 = solid.num_vertices();
   for (const Vec3& p : b) solid.vertices.push_back(p);
   auto band_vertex = [&](int k) { return k < m ? a_ids[k] : base0 + (k - m); };
-  for (const auto& t : band.triangles) solid.faces.push_back({band_vertex(t[0]), band_vertex(t[1]), band_vertex(t[2])});
+  for (const auto& t : band.triangles)
+    solid.faces.push_back({band_vertex(t[0]), band_vertex(t[1]), band_vertex(t[2])});
 
   // The band runs along B backwards, so the cap runs along B forwards.
   bool centre = false;

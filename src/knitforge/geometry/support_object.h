@@ -50,8 +50,9 @@ struct SupportObject {
   /// (faces reversed) first: the support lies on the side opposite to the
   /// normals, towards the base.
   bool reoriented = false;
-  /// Faces whose orientation reversed by the offset (offset larger than the
-  /// local radius of curvature: the top self-intersects); 0 for a clean result.
+  /// Faces turned inside out by the offset, plus (shell) those of the
+  /// thickening (offset or thickness larger than the local radius of
+  /// curvature: the solid self-intersects); 0 for a clean result.
   int flipped_faces = 0;
   /// Triangles and cost of the band between the boundary and the base loop
   /// (0 for a shell).

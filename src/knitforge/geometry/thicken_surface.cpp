@@ -20,8 +20,8 @@ void check_finite(const TriMesh& mesh, const char* what) {
   for (int f = 0; f < mesh.num_faces(); ++f) {
     for (int v : mesh.faces[f]) {
       if (v < 0 || v >= mesh.num_vertices()) {
-        throw InvalidInput(fmt::format("{}: face {} uses vertex {}, outside [0, {})", what, f, v,
-                                       mesh.num_vertices()));
+        throw InvalidInput(
+            fmt::format("{}: face {} uses vertex {}, outside [0, {})", what, f, v, mesh.num_vertices()));
       }
     }
   }
@@ -37,11 +37,11 @@ Vec3 area_vector(const TriMesh& m, const std::array<int, 3>& t) {
 /// reverses every edge).
 bool turned_over(const TriMesh& before, const TriMesh& after, const std::array<int, 3>& t0,
                  const std::array<int, 3>& t1) {
-  if (area_vector(before, t0).dot(area_vector(after, t1)) <= 0.0) return true;
+  if (area_vector(before, t0).dot(area_vector(after, t1)) < 0.0) return true;
   for (int k = 0; k < 3; ++k) {
     const Vec3 e0 = before.vertices[t0[(k + 1) % 3]] - before.vertices[t0[k]];
     const Vec3 e1 = after.vertices[t1[(k + 1) % 3]] - after.vertices[t1[k]];
-    if (e0.dot(e1) <= 0.0) return true;
+    if (e0.dot(e1) < 0.0) return true;
   }
   return false;
 }
@@ -76,10 +76,10 @@ std::vector<Vec3> offset_normals(const TriMesh& mesh, int* fallback_count) {
     ++fallbacks;
     const double ulen = unit[v].norm();
     if (!(ulen > 1e-9)) {
-      throw InvalidInput(fmt::format(
-          "offset_normals: the faces around vertex {} cancel out (zero area or folded back on "
-          "themselves), so it has no normal; remove the degenerate faces or remesh the surface",
-          v));
+      throw InvalidInput(
+          fmt::format("offset_normals: the faces around vertex {} cancel out (zero area or folded back on "
+                      "themselves), so it has no normal; remove the degenerate faces or remesh the surface",
+                      v));
     }
     out[v] = unit[v] / ulen;
   }
@@ -129,9 +129,15 @@ ThickenResult thicken_surface(const TriMesh& surface, const ThickenOptions& opti
   const std::vector<Vec3> normals = offset_normals(mid, &result.fallback_normals);
   double up = 0.0, down = 0.0;
   switch (options.side) {
-    case ThickenSide::Both: up = down = 0.5 * options.thickness; break;
-    case ThickenSide::Outside: up = options.thickness; break;
-    case ThickenSide::Inside: down = options.thickness; break;
+    case ThickenSide::Both:
+      up = down = 0.5 * options.thickness;
+      break;
+    case ThickenSide::Outside:
+      up = options.thickness;
+      break;
+    case ThickenSide::Inside:
+      down = options.thickness;
+      break;
   }
   const int nv = mid.num_vertices();
   TriMesh& solid = result.solid;
