@@ -15,12 +15,6 @@ using namespace knitforge;
 
 namespace {
 
-void expect_closed_manifold(const TriMesh& m) {
-  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
-  EXPECT_TRUE(he.boundary_loops().empty());
-  for (int h = 0; h < he.num_halfedges(); ++h) ASSERT_GE(he.opposite(h), 0);
-}
-
 // Fibonacci sphere points.
 TriMesh sphere_points(double r, int n) {
   TriMesh m;
@@ -41,7 +35,7 @@ TEST(AlphaClose, SpherePointCloudGivesAClosedBall) {
   o.alpha = 4.0;
   o.offset = 0.5;
   const AlphaCloseResult res = alpha_close(sphere_points(r, 1500), o);
-  expect_closed_manifold(res.mesh);
+  test::expect_watertight(res.mesh);
   EXPECT_EQ(res.capped_holes, 0);
   int components = 0;
   build_halfedges(res.mesh.num_vertices(), res.mesh.faces).face_components(&components);
@@ -61,7 +55,7 @@ TEST(AlphaClose, OpenHemisphereIsCappedIntoAHalfBall) {
   o.alpha = 3.0;
   o.offset = 0.5;
   const AlphaCloseResult res = alpha_close(h, o);
-  expect_closed_manifold(res.mesh);
+  test::expect_watertight(res.mesh);
   EXPECT_EQ(res.capped_holes, 1);
   const double expected = 2.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(res.volume, expected, 0.12 * expected);
@@ -69,7 +63,7 @@ TEST(AlphaClose, OpenHemisphereIsCappedIntoAHalfBall) {
   // Without capping the wrap is a thin shell around the bowl: far less volume.
   o.cap_holes = false;
   const AlphaCloseResult shell = alpha_close(h, o);
-  expect_closed_manifold(shell.mesh);
+  test::expect_watertight(shell.mesh);
   EXPECT_LT(shell.volume, 0.3 * expected);
 }
 
@@ -91,13 +85,13 @@ TEST(AlphaClose, GapsNarrowerThanAlphaAreBridged) {
   o.alpha = 6.0;
   int comps = 0;
   AlphaCloseResult res = alpha_close(two, o);
-  expect_closed_manifold(res.mesh);
+  test::expect_watertight(res.mesh);
   build_halfedges(res.mesh.num_vertices(), res.mesh.faces).face_components(&comps);
   EXPECT_EQ(comps, 1);
   EXPECT_GT(res.volume, 2000.0 + 0.5 * 200.0);  // the 2 x 10 x 10 gap is (mostly) filled
   o.alpha = 0.5;
   res = alpha_close(two, o);
-  expect_closed_manifold(res.mesh);
+  test::expect_watertight(res.mesh);
   build_halfedges(res.mesh.num_vertices(), res.mesh.faces).face_components(&comps);
   EXPECT_EQ(comps, 2);
 }
@@ -120,7 +114,7 @@ TEST(AlphaClose, ParameterValidationAndDefaults) {
   const double diag = bounding_box(tet).diagonal();
   EXPECT_NEAR(res.alpha, diag / 20.0, 1e-12);
   EXPECT_NEAR(res.offset, res.alpha / 30.0, 1e-12);
-  expect_closed_manifold(res.mesh);
+  test::expect_watertight(res.mesh);
   // The tetrahedron has volume 8/3; the wrap encloses it, slightly larger.
   EXPECT_GT(res.volume, 8.0 / 3.0);
   EXPECT_LT(res.volume, 8.0 / 3.0 * 1.5);

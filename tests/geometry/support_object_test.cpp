@@ -16,14 +16,7 @@ using namespace knitforge;
 
 namespace {
 
-void expect_watertight(const TriMesh& m) {
-  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
-  EXPECT_TRUE(he.boundary_loops().empty());
-  for (int h = 0; h < he.num_halfedges(); ++h) ASSERT_GE(he.opposite(h), 0);
-  int components = 0;
-  he.face_components(&components);
-  EXPECT_EQ(components, 1);
-}
+void expect_watertight(const TriMesh& m) { EXPECT_EQ(test::expect_watertight(m), 1); }
 
 double min_face_area(const TriMesh& m) {
   double a = INFINITY;

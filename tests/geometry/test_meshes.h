@@ -6,6 +6,9 @@
 #include <numbers>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "knitforge/geometry/halfedges.h"
 #include "knitforge/geometry/tri_mesh.h"
 
 namespace knitforge::test {
@@ -59,6 +62,19 @@ inline TriMesh tetrahedron() {
   m.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
   m.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
   return m;
+}
+
+// Expects a closed (watertight), oriented, edge-manifold mesh: every half-edge
+// has an opposite (build_halfedges() has already rejected non-manifold and
+// inconsistently oriented input). Returns the number of face components.
+inline int expect_watertight(const TriMesh& m) {
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  EXPECT_TRUE(he.boundary_loops().empty());
+  for (int h = 0; h < he.num_halfedges(); ++h) EXPECT_GE(he.opposite(h), 0) << "half-edge " << h;
+  EXPECT_EQ(2 * he.num_edges(), he.num_halfedges());
+  int components = 0;
+  he.face_components(&components);
+  return components;
 }
 
 }  // namespace knitforge::test

@@ -14,22 +14,13 @@
 
 using namespace knitforge;
 
-namespace {
-
-void expect_watertight(const TriMesh& m) {
-  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
-  EXPECT_TRUE(he.boundary_loops().empty());
-  for (int h = 0; h < he.num_halfedges(); ++h) ASSERT_GE(he.opposite(h), 0);
-  EXPECT_EQ(2 * he.num_edges(), he.num_halfedges());
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(ThickenSurface, FlatSquareBecomesABox) {
   const TriMesh grid = test::square_grid(4, 10.0);  // 40 x 40 in z = 0, normal +z
   for (ThickenSide side : {ThickenSide::Both, ThickenSide::Outside, ThickenSide::Inside}) {
     const ThickenResult r = thicken_surface(grid, {3.0, side});
-    expect_watertight(r.solid);
+    test::expect_watertight(r.solid);
     EXPECT_EQ(r.flipped_faces, 0);
     EXPECT_EQ(r.fallback_normals, 0);
     EXPECT_EQ(r.solid.num_vertices(), 2 * grid.num_vertices());
@@ -47,7 +38,7 @@ TEST(ThickenSurface, HemisphereShellVolume) {
   const double r = 30.0, t = 2.0;
   const TriMesh h = hemisphere(r, 3.0);
   const ThickenResult res = thicken_surface(h, {t, ThickenSide::Both});
-  expect_watertight(res.solid);
+  test::expect_watertight(res.solid);
   EXPECT_EQ(res.flipped_faces, 0);
   // Shell between radii r - t/2 and r + t/2 (polygonal: a little less).
   const double expected = 2.0 / 3.0 * std::numbers::pi * (std::pow(r + t / 2, 3) - std::pow(r - t / 2, 3));
@@ -72,7 +63,7 @@ TEST(ThickenSurface, ThicknessBeyondCurvatureRadiusReportsFlips) {
   EXPECT_GT(flipped, 0);
   offset_surface(saddle, 5.0, &flipped);
   EXPECT_EQ(flipped, 0);
-  expect_watertight(res.solid);  // still closed, though self-intersecting
+  test::expect_watertight(res.solid);  // still closed, though self-intersecting
 }
 
 TEST(ThickenSurface, ClosedSurfaceGivesTwoShells) {
@@ -80,7 +71,7 @@ TEST(ThickenSurface, ClosedSurfaceGivesTwoShells) {
   tet.vertices = {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0), Vec3(0, 0, 10)};
   tet.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
   const ThickenResult res = thicken_surface(tet, {0.5, ThickenSide::Both});
-  expect_watertight(res.solid);
+  test::expect_watertight(res.solid);
   EXPECT_EQ(res.solid.num_faces(), 8);
   int count = 0;
   build_halfedges(res.solid.num_vertices(), res.solid.faces).face_components(&count);
