@@ -1,7 +1,8 @@
 // Benchmark: the governing geodesic field of the short-row route (seed §3.2.1)
 // on the test meshes of ../shared/data (cm, scaled to mm) with the symmetry
-// plane x = 0 as source, and on the built-in triple-peak. Goal: a small part
-// of the 0.5 s budget of the whole route on mannequin_front (docs/geometry.md).
+// plane x = 0 as source, and on the built-in triple-peak and hemisphere.
+// Goal: a small part of the budget of the whole route (hemisphere 0.2 s,
+// mannequin_front 0.5 s; docs/geometry.md).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -11,7 +12,6 @@
 #include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/io/mesh_io.h"
-
 
 using namespace knitforge;
 
@@ -33,11 +33,15 @@ const TriMesh& mesh_for(int which) {
   static const TriMesh mannequin = load_mm("mannequin_front.obj");
   static const TriMesh peak_file = load_mm("triple_peak.obj");
   static const TriMesh peak_builtin = triple_peak(2.5);
-  return which == 0 ? mannequin : which == 1 ? peak_file : peak_builtin;
+  static const TriMesh hemi = hemisphere(75.0);
+  return which == 0 ? mannequin : which == 1 ? peak_file : which == 2 ? peak_builtin : hemi;
 }
 
 const char* name_of(int which) {
-  return which == 0 ? "mannequin_front" : which == 1 ? "triple_peak.obj" : "triple-peak (built-in, 2.5 mm)";
+  return which == 0   ? "mannequin_front"
+         : which == 1 ? "triple_peak.obj"
+         : which == 2 ? "triple-peak (built-in, 2.5 mm)"
+                      : "hemisphere (built-in, r 75 mm, default edge)";
 }
 
 // The whole field: source extraction + precomputation + propagation.
@@ -54,7 +58,7 @@ void BM_GeodesicFieldPlaneX0(benchmark::State& state) {
   state.counters["windows"] = static_cast<double>(f.num_windows);
   state.counters["max_mm"] = f.max_abs_distance;
 }
-BENCHMARK(BM_GeodesicFieldPlaneX0)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeodesicFieldPlaneX0)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
 // The stages separately on mannequin_front: source, precomputation, propagation.
 void BM_GeodesicSourcePlane(benchmark::State& state) {
@@ -87,7 +91,7 @@ void BM_GeodesicPropagation(benchmark::State& state) {
   }
   state.SetLabel(name_of(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_GeodesicPropagation)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeodesicPropagation)->Arg(0)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
 
 // A vertex source (the classic single-source exact problem) for comparison.
 void BM_GeodesicVertexSource(benchmark::State& state) {
@@ -102,7 +106,7 @@ void BM_GeodesicVertexSource(benchmark::State& state) {
   state.SetLabel(name_of(static_cast<int>(state.range(0))));
   state.counters["windows"] = static_cast<double>(f.num_windows);
 }
-BENCHMARK(BM_GeodesicVertexSource)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeodesicVertexSource)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The cut of a closed wale: shortest path from an interior point to the boundary.
 void BM_GeodesicPathToBoundary(benchmark::State& state) {

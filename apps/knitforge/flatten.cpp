@@ -226,6 +226,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                        {"added_long_rows", r.added_long_rows},
                        {"extended_cells", r.extended_cells},
                        {"filled_gap_cells", r.filled_gap_cells},
+                       {"short_row_holes", r.short_row_holes},
                        {"shifted_turns", r.shifted_turns}};
       std::array<int, 7> cells{};
       for (CellType c : r.map.cells) ++cells[static_cast<int>(c)];

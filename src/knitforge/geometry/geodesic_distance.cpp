@@ -26,19 +26,24 @@ GeodesicField GeodesicSolver::distance(const GeodesicSource& source, const Geode
   if (!any) throw InvalidInput("geodesic distance: the source has no points");
   const bool sided = options.signed_field && !source.vertex_side.empty();
   if (!source.vertex_side.empty() && static_cast<int>(source.vertex_side.size()) != mesh.num_vertices())
-    throw InvalidInput(fmt::format("geodesic distance: the source has {} vertex sides but the mesh has {} vertices",
-                                   source.vertex_side.size(), mesh.num_vertices()));
+    throw InvalidInput(
+        fmt::format("geodesic distance: the source has {} vertex sides but the mesh has {} vertices",
+                    source.vertex_side.size(), mesh.num_vertices()));
   detail::GeodesicPropagation prop(*geometry_);
   for (const auto& line : source.polylines) {
     const size_t n = line.size();
     if (n == 0) continue;
-    const bool closed = n > 2 && (surface_point_position(mesh, line.front()) -
-                                  surface_point_position(mesh, line.back())).norm() == 0.0;
+    const bool closed =
+        n > 2 &&
+        (surface_point_position(mesh, line.front()) - surface_point_position(mesh, line.back())).norm() ==
+            0.0;
     const size_t npts = closed ? n - 1 : n;
     for (size_t i = 0; i < npts; ++i) {
       std::vector<const SurfacePoint*> nb;
-      if (i > 0) nb.push_back(&line[i - 1]);
-      else if (closed) nb.push_back(&line[n - 2]);
+      if (i > 0)
+        nb.push_back(&line[i - 1]);
+      else if (closed)
+        nb.push_back(&line[n - 2]);
       if (i + 1 < n) nb.push_back(&line[i + 1]);
       prop.add_point(line[i], nb);
     }
@@ -64,7 +69,8 @@ GeodesicField GeodesicSolver::distance(const GeodesicSource& source, const Geode
   return field;
 }
 
-GeodesicField geodesic_distance(const TriMesh& mesh, const GeodesicSource& source, const GeodesicOptions& options) {
+GeodesicField geodesic_distance(const TriMesh& mesh, const GeodesicSource& source,
+                                const GeodesicOptions& options) {
   return GeodesicSolver(mesh).distance(source, options);
 }
 

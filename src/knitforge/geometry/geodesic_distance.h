@@ -27,10 +27,11 @@
 ///
 /// Cost: like every exact window method the number of windows grows about
 /// as n^1.5 on curved meshes (each vertex splits the wavefront into pieces
-/// with different unfoldings). Measured (2-core machine, CPU time): triple-
-/// peak.obj (10k faces) 0.42 s, mannequin_front (26.6k faces, a noisy scan
-/// with many saddle vertices) 1.5-2.0 s for the plane x = 0 source; built-in
-/// shapes at 5 mm edges 10-70 ms. See docs/geometry.md for the profile.
+/// with different unfoldings). Measured (2-core machine under load, CPU
+/// time, plane x = 0 source): built-in hemisphere (r 75, 13.5k faces) 0.25-
+/// 0.31 s, triple_peak.obj (10k faces) 0.13-0.18 s, mannequin_front (26.6k
+/// faces, a noisy scan with many saddle vertices) 0.5-0.58 s; about 0.45 µs
+/// per window. See docs/geometry.md for the profile.
 ///
 /// GeodesicSolver builds the connectivity and the unfolded face frames once;
 /// each distance() call is then one propagation. The one-shot

@@ -30,12 +30,13 @@ GeodesicPath finish(std::vector<GeodesicPathPoint> traced, bool reverse) {
 
 void check_point(const TriMesh& mesh, const SurfacePoint& p, const char* what) {
   if (p.face < 0 || p.face >= mesh.num_faces())
-    throw InvalidInput(fmt::format("geodesic path: the {} point is in face {} but the mesh has {} faces", what,
-                                   p.face, mesh.num_faces()));
+    throw InvalidInput(fmt::format("geodesic path: the {} point is in face {} but the mesh has {} faces",
+                                   what, p.face, mesh.num_faces()));
   if (!p.bary.allFinite() || p.bary.minCoeff() < 0.0 || std::abs(p.bary.sum() - 1.0) > 1e-9)
-    throw InvalidInput(fmt::format(
-        "geodesic path: the {} point has barycentric coordinates ({}, {}, {}); they must be >= 0 and sum to 1",
-        what, p.bary[0], p.bary[1], p.bary[2]));
+    throw InvalidInput(
+        fmt::format("geodesic path: the {} point has barycentric coordinates ({}, {}, {}); they must be >= 0 "
+                    "and sum to 1",
+                    what, p.bary[0], p.bary[1], p.bary[2]));
 }
 
 }  // namespace

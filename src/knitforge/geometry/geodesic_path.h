@@ -29,7 +29,7 @@ struct GeodesicPathPoint {
   int v0 = -1;
   int v1 = -1;
   double ratio = 0.0;
-  SurfacePoint point;  ///< the same point as face + barycentric coordinates (always set)
+  SurfacePoint point;            ///< the same point as face + barycentric coordinates (always set)
   Vec3 position = Vec3::Zero();  ///< mm
 
   bool is_vertex() const { return v0 >= 0 && v0 == v1; }

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <numbers>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include "knitforge/util/errors.h"
 
@@ -111,6 +111,18 @@ GeodesicGeometry build_geodesic_geometry(const TriMesh& mesh) {
     const double need = boundary ? std::numbers::pi : 2.0 * std::numbers::pi;
     g.emits[v] = degenerate[v] || angle[v] > need + tol;
   }
+  std::vector<char> flat(nv, 0);
+  for (int v = 0; v < nv; ++v)
+    flat[v] = !g.he.is_isolated_vertex(v) && !g.is_boundary[v] &&
+              std::abs(angle[v] - 2.0 * std::numbers::pi) <= 1e-9;
+  g.mergeable.assign(nh, 0);
+  auto face_has_flat = [&](int h) {
+    return flat[g.he.from(h)] || flat[g.he.to(h)] || flat[g.he.to(g.he.next(h))];
+  };
+  for (int h = 0; h < nh; ++h) {
+    const int o = g.he.opposite(h);
+    g.mergeable[h] = face_has_flat(h) || (o >= 0 && face_has_flat(o));
+  }
   return g;
 }
 
@@ -119,14 +131,17 @@ GeodesicPropagation::GeodesicPropagation(const GeodesicGeometry& g, bool track_b
       dist_(g.mesh->num_vertices(), kInf),
       vorigin_(g.mesh->num_vertices(), Origin::None),
       vorigin_id_(g.mesh->num_vertices(), -1),
-      merge_(size_t{1} << 12, MergeSlot{0, -1}),
+      pending_(g.he.num_halfedges()),
       track_boundary_(track_boundary) {}
 
 Vec2 GeodesicPropagation::corner(int h, int k) const {
   switch (k % 3) {
-    case 0: return Vec2(0.0, 0.0);
-    case 1: return Vec2(g_.len[h], 0.0);
-    default: return g_.apex[h];
+    case 0:
+      return Vec2(0.0, 0.0);
+    case 1:
+      return Vec2(g_.len[h], 0.0);
+    default:
+      return g_.apex[h];
   }
 }
 
@@ -149,7 +164,7 @@ void GeodesicPropagation::update_vertex(int v, double d, Origin origin, int id) 
   vorigin_[v] = origin;
   vorigin_id_[v] = id;
   if (track_boundary_ && g_.is_boundary[v]) boundary_candidate(d, -1, 0.0, Origin::Vertex, v);
-  queue_.push({d, -(v + 1)});
+  queue_.push({d, -(v + 1), Window{}});
 }
 
 uint64_t GeodesicPropagation::RadixQueue::bits(double key) {
@@ -185,32 +200,9 @@ GeodesicPropagation::QueueItem GeodesicPropagation::RadixQueue::pop() {
   return item;
 }
 
-int& GeodesicPropagation::merge_head(int h, const Window& w) {
-  const uint64_t root = (static_cast<uint64_t>(static_cast<uint32_t>(w.origin_id)) << 4) |
-                        (static_cast<uint64_t>(w.origin) << 2) | (static_cast<uint64_t>(w.aux & 1) << 1) |
-                        static_cast<uint64_t>(w.line);
-  const uint64_t key = ((static_cast<uint64_t>(h) << 36) ^ root) + 1;
-  // Multiplicative hashing: the top bits of key * 2^64/φ.
-  auto slot = [this](uint64_t k) {
-    return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> (64 - std::countr_zero(merge_.size())));
-  };
-  if (2 * (merge_used_ + 1) > merge_.size()) {  // grow
-    std::vector<MergeSlot> old(merge_.size() * 2, MergeSlot{0, -1});
-    old.swap(merge_);
-    for (const MergeSlot& m : old) {
-      if (m.key == 0) continue;
-      size_t i = slot(m.key);
-      while (merge_[i].key != 0) i = (i + 1) & (merge_.size() - 1);
-      merge_[i] = m;
-    }
-  }
-  size_t i = slot(key);
-  while (merge_[i].key != 0 && merge_[i].key != key) i = (i + 1) & (merge_.size() - 1);
-  if (merge_[i].key == 0) {
-    merge_[i] = {key, -1};
-    ++merge_used_;
-  }
-  return merge_[i].head;
+uint32_t GeodesicPropagation::root_code(const Window& w) {
+  return (static_cast<uint32_t>(w.origin_id) << 3) | (w.origin == Origin::Vertex ? 4u : 0u) |
+         (static_cast<uint32_t>(w.aux & 1) << 1) | static_cast<uint32_t>(w.line);
 }
 
 void GeodesicPropagation::boundary_candidate(double d, int halfedge, double t, Origin origin, int id) {
@@ -230,7 +222,9 @@ bool GeodesicPropagation::dominated(Window& w, const Vec2* extra, int extra_vert
   // f(x) = d(x) - x is non-increasing and d(x) + x non-decreasing along the
   // edge (|d'| <= 1): the points dominated by a (d(x) > da + x + eps) form
   // an interval at the start, those dominated by b one at the end.
-  auto dist_at = [&](double x) { return w.line ? sx * x + w.sigma : std::sqrt((x - sx) * (x - sx) + sy * sy) + w.sigma; };
+  auto dist_at = [&](double x) {
+    return w.line ? sx * x + w.sigma : std::sqrt((x - sx) * (x - sx) + sy * sy) + w.sigma;
+  };
   const double d0 = dist_at(w.b0), d1 = dist_at(w.b1);
   if (d1 > da + w.b1 + eps) return true;
   if (d0 > db + (L - w.b0) + eps) return true;
@@ -295,37 +289,39 @@ bool GeodesicPropagation::prepare(Window& w) const {
 // pieces a window is split into at every vertex would stay separate forever
 // and their number per edge would grow with the distance from the source.
 void GeodesicPropagation::push_window(const Window& w) {
+  if (!g_.mergeable[w.h]) {
+    const int id = static_cast<int>(windows_.size());
+    windows_.push_back(w);
+    queue_.push({w.key, id, w});
+    return;
+  }
   const double L = g_.len[w.h];
   const double ftol = 1e-9 * g_.scale;
-  int& head = merge_head(w.h, w);  // windows on edge w.h with the same root
-  int prev = -1;
-  for (int j = head; j >= 0; j = windows_[j].next_on_edge) {
+  std::vector<PendingRef>& pend = pending_[w.h];
+  const uint32_t root = root_code(w);
+  const double stol = w.line ? 1e-12 : ftol;
+  for (size_t i = pend.size(); i-- > 0;) {  // the most recent first
+    const PendingRef& r = pend[i];
+    if (r.root != root || std::abs(r.sigma - w.sigma) > ftol || std::abs(r.sx - w.s.x()) > stol) continue;
+    const int j = r.id;
     Window& o = windows_[j];
-    if (o.done) {  // unlink: the list holds pending windows only
-      if (prev < 0) {
-        head = o.next_on_edge;
-      } else {
-        windows_[prev].next_on_edge = o.next_on_edge;
-      }
-      continue;
-    }
-    prev = j;
+    if (o.line != w.line || o.origin != w.origin || o.origin_id != w.origin_id || o.aux != w.aux) continue;
     if (std::abs(o.sigma - w.sigma) > ftol) continue;
     if (w.line ? (o.s - w.s).norm() > 1e-12 : (o.s - w.s).norm() > ftol) continue;
     if (w.b0 > o.b1 + 1e-9 * L || w.b1 < o.b0 - 1e-9 * L) continue;
     o.b0 = std::min(o.b0, w.b0);
     o.b1 = std::max(o.b1, w.b1);
+    // (o.s and o.sigma are unchanged: the copies in pend stay valid)
     if (w.key < o.key) {
       o.key = w.key;
-      queue_.push({o.key, j});
+      queue_.push({o.key, j, o});
     }
     return;
   }
   const int id = static_cast<int>(windows_.size());
   windows_.push_back(w);
-  windows_.back().next_on_edge = head;
-  head = id;
-  queue_.push({w.key, id});
+  pend.push_back({root, id, w.s.x(), w.sigma});
+  queue_.push({w.key, id, w});
 }
 
 // Child k (1: edge next(h) = B->C, 2: edge prev(h) = C->A) of window `parent`
@@ -385,8 +381,7 @@ void GeodesicPropagation::make_child(const Window& parent, int wi, int k, double
   push_window(c);
 }
 
-void GeodesicPropagation::propagate(int wi) {
-  const Window w = windows_[wi];
+void GeodesicPropagation::propagate(const Window& w, int wi) {
   const int h = w.h;
   const Vec2 C = g_.apex[h];
   const double L = g_.len[h];
@@ -424,7 +419,8 @@ double GeodesicPropagation::back_angle(int v) const {
       if (k == 3) return -1.0;
       const Vec2 P = corner(h0, k);
       const Vec2 d = sd.q2 - sd.p2;
-      const double t = d.squaredNorm() > 0.0 ? std::clamp((P - sd.p2).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double t =
+          d.squaredNorm() > 0.0 ? std::clamp((P - sd.p2).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
       const Vec2 back = sd.p2 + t * d - P;
       const Vec2 e = corner(h0, k + 1) - P;
       if (back.norm() <= 1e-12 * g_.scale || e.norm() <= 0.0) return -1.0;
@@ -631,8 +627,8 @@ void GeodesicPropagation::seed_face(int f, const Vec3& bp, const Vec3& bq, bool 
 void GeodesicPropagation::check_point(const SurfacePoint& sp) const {
   const TriMesh& mesh = *g_.mesh;
   if (sp.face < 0 || sp.face >= mesh.num_faces())
-    throw InvalidInput(fmt::format("geodesic source: surface point in face {} but the mesh has {} faces", sp.face,
-                                   mesh.num_faces()));
+    throw InvalidInput(fmt::format("geodesic source: surface point in face {} but the mesh has {} faces",
+                                   sp.face, mesh.num_faces()));
   const Vec3& b = sp.bary;
   if (!b.allFinite() || b.minCoeff() < 0.0 || std::abs(b.sum() - 1.0) > 1e-9)
     throw InvalidInput(fmt::format(
@@ -686,7 +682,8 @@ void GeodesicPropagation::add_segment(const SurfacePoint& p, const SurfacePoint&
         p.face, q.face));
 }
 
-void GeodesicPropagation::add_point(const SurfacePoint& p, const std::vector<const SurfacePoint*>& neighbours) {
+void GeodesicPropagation::add_point(const SurfacePoint& p,
+                                    const std::vector<const SurfacePoint*>& neighbours) {
   const TriMesh& mesh = *g_.mesh;
   check_point(p);
   for (const SurfacePoint* q : neighbours) check_point(*q);
@@ -740,6 +737,8 @@ void GeodesicPropagation::add_point(const SurfacePoint& p, const std::vector<con
 }
 
 void GeodesicPropagation::run() {
+  if (windows_.capacity() < 8 * static_cast<size_t>(g_.he.num_halfedges()))
+    windows_.reserve(8 * static_cast<size_t>(g_.he.num_halfedges()));
   while (!queue_.empty()) {
     const QueueItem item = queue_.pop();
     if (item.id < 0) {
@@ -748,11 +747,24 @@ void GeodesicPropagation::run() {
       emit_vertex(v);
       continue;
     }
+    // (No second filter here: the vertex distances rarely improve enough
+    // between a window's creation and its turn to drop it.)
+    if (!g_.mergeable[item.w.h]) {  // never changed after its creation: use the copy
+      propagate(item.w, item.id);
+      continue;
+    }
     Window& w = windows_[item.id];
-    if (w.done) continue;
-    w.done = true;  // (trimmed in place below: the cut parts are dominated)
-    if (dominated(w, nullptr, -1)) continue;
-    propagate(item.id);
+    if (w.done) continue;  // a merge re-queued it with a smaller key
+    w.done = true;
+    std::vector<PendingRef>& pend = pending_[w.h];
+    for (size_t i = 0; i < pend.size(); ++i) {
+      if (pend[i].id == item.id) {
+        pend[i] = pend.back();
+        pend.pop_back();
+        break;
+      }
+    }
+    propagate(Window(w), item.id);
   }
 }
 
@@ -855,7 +867,7 @@ void GeodesicPropagation::trace_window_from(int wi, Vec2 x, std::vector<Geodesic
   const TriMesh& mesh = *g_.mesh;
   const Window& w0 = windows_[wi];
   const bool line = w0.line;
-  Vec2 s = w0.s;          // point: source; line: ray direction n
+  Vec2 s = w0.s;  // point: source; line: ray direction n
   double sigma = w0.sigma;
   int h = w0.h;
   // Crossing of the first edge.
@@ -916,8 +928,8 @@ void GeodesicPropagation::trace_window_from(int wi, Vec2 x, std::vector<Geodesic
       const Vec2 e = e1 - e0;
       const double den = cross2(d, e);
       if (den == 0.0) continue;
-      const double u = cross2(e0 - X, e) / den;   // along the ray
-      const double t = cross2(e0 - X, d) / den;   // along the edge
+      const double u = cross2(e0 - X, e) / den;  // along the ray
+      const double t = cross2(e0 - X, d) / den;  // along the edge
       const double slack = 1e-9;
       if (u <= 0.0 || t < -slack || t > 1.0 + slack) continue;
       // Prefer the edge hit well inside; ties at C go to either.
@@ -1025,8 +1037,9 @@ double GeodesicPropagation::trace_point(const SurfacePoint& p, std::vector<Geode
       for (int i = g_.out_start[v]; i < g_.out_start[v + 1]; ++i) {
         const int f = g_.he.face(g_.out_he[i]);
         bool ok = true;
-        for (int j = 0; j < nz; ++j) ok = ok && (mesh.faces[f][0] == t[ks[j]] || mesh.faces[f][1] == t[ks[j]] ||
-                                                 mesh.faces[f][2] == t[ks[j]]);
+        for (int j = 0; j < nz; ++j)
+          ok = ok &&
+               (mesh.faces[f][0] == t[ks[j]] || mesh.faces[f][1] == t[ks[j]] || mesh.faces[f][2] == t[ks[j]]);
         if (ok) faces.push_back(f);
       }
     }
@@ -1076,7 +1089,10 @@ double GeodesicPropagation::trace_point(const SurfacePoint& p, std::vector<Geode
     const double L = g_.len[h0];
     if (!(xc >= w.b0 - 1e-12 * L && xc <= w.b1 + 1e-12 * L)) continue;
     const double d = window_distance(w, x);
-    if (d < best) {
+    // A window must beat the vertex and seed candidates by more than rounding:
+    // near ties (p on the window's edge, at a vertex) trace more robustly
+    // through the vertex.
+    if (d < best - (kind == kWindow ? 0.0 : g_.eps)) {
       best = d;
       kind = kWindow;
       id = wi;

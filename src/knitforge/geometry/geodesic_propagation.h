@@ -30,7 +30,13 @@
 ///
 /// Windows that touch on an edge and carry the same distance function (same
 /// root, same unfolding) are merged, so a wavefront that vertices split into
-/// pieces does not fragment further on flat parts. Every window remembers its
+/// pieces does not fragment further on flat parts. Pieces split at a vertex
+/// share an unfolding again only if that vertex is flat, so merge candidates
+/// are looked for only on the half-edges next to flat vertices
+/// (GeodesicGeometry::mergeable); merging never changes a distance, it only
+/// saves work. The queue is a radix heap (keys grow monotonically) holding
+/// copies of the windows, so processing a window reads no scattered memory.
+/// Profile and measured speed: docs/geometry.md. Every window remembers its
 /// root (seed or pseudo-source vertex); a shortest path is traced back from
 /// any vertex, boundary point or face point by walking the window's straight
 /// backward ray face by face in the unfolding.
@@ -53,18 +59,26 @@ namespace knitforge::detail {
 struct GeodesicGeometry {
   const TriMesh* mesh = nullptr;
   Halfedges he;
-  std::vector<double> len;         ///< per half-edge: edge length
-  std::vector<Vec2> apex;          ///< per half-edge h: the third vertex of face(h) in the frame from(h) = (0,0), to(h) = (len,0)
-  std::vector<int> out_start;      ///< CSR: half-edges leaving vertex v are out_he[out_start[v] .. out_start[v+1])
+  std::vector<double> len;  ///< per half-edge: edge length
+  std::vector<Vec2>
+      apex;  ///< per half-edge h: the third vertex of face(h) in the frame from(h) = (0,0), to(h) = (len,0)
+  std::vector<int>
+      out_start;  ///< CSR: half-edges leaving vertex v are out_he[out_start[v] .. out_start[v+1])
   std::vector<int> out_he;
-  std::vector<char> emits;         ///< per vertex: may act as a pseudo-source
-  std::vector<char> degenerate;    ///< per vertex: touches a degenerate face or zero-length edge
+  std::vector<char> emits;           ///< per vertex: may act as a pseudo-source
+  std::vector<char> degenerate;      ///< per vertex: touches a degenerate face or zero-length edge
   std::vector<double> corner_angle;  ///< per half-edge: the face's angle at from(h)
-  std::vector<double> theta;       ///< per half-edge: angular position of from(h)->to(h) around from(h)
-  std::vector<double> total_angle; ///< per vertex: sum of its corner angles
-  std::vector<char> is_boundary;   ///< per vertex
-  double scale = 1.0;              ///< bounding-box diagonal (mm)
-  double eps = 0.0;                ///< absolute distance tolerance (1e-11 scale)
+  std::vector<double> theta;         ///< per half-edge: angular position of from(h)->to(h) around from(h)
+  std::vector<double> total_angle;   ///< per vertex: sum of its corner angles
+  std::vector<char> is_boundary;     ///< per vertex
+  /// Per half-edge h: a vertex of face(h) or of the face across h is
+  /// intrinsically flat (interior, total angle 2π within 1e-9), so windows on
+  /// h can meet pieces with the same distance function (split at that vertex)
+  /// and are worth merging. Elsewhere the pieces of a window that meet again
+  /// went around curved vertices and never share an unfolding.
+  std::vector<char> mergeable;
+  double scale = 1.0;  ///< bounding-box diagonal (mm)
+  double eps = 0.0;    ///< absolute distance tolerance (1e-11 scale)
 };
 
 /// Builds the geometry. \throw TopologyError from build_halfedges();
@@ -74,24 +88,23 @@ GeodesicGeometry build_geodesic_geometry(const TriMesh& mesh);
 enum class Origin : char { None, Seed, Window, Vertex, Edge };
 
 struct Window {
-  int h = -1;          ///< the window lies on edge(h) and propagates into face(h)
-  bool line = false;   ///< segment-interior (parallel rays) instead of a point source
-  bool done = false;   ///< propagated (or discarded)
-  char aux = 0;        ///< seeds: 0 source point p, 1 source point q
+  int h = -1;                    ///< the window lies on edge(h) and propagates into face(h)
+  bool line = false;             ///< segment-interior (parallel rays) instead of a point source
+  bool done = false;             ///< propagated (set for windows on mergeable half-edges only)
+  char aux = 0;                  ///< seeds: 0 source point p, 1 source point q
   Origin origin = Origin::None;  ///< the root: Seed or Vertex (pseudo-source)
-  int origin_id = -1;  ///< seed index or pseudo-source vertex
-  int next_on_edge = -1;  ///< previous window with the same half-edge and root (merge list)
-  double b0 = 0.0, b1 = 0.0;  ///< interval along h, from from(h)
-  Vec2 s = Vec2::Zero();      ///< point: unfolded source (y < 0); line: unit ray direction (y > 0)
-  double sigma = 0.0;         ///< point: offset; line: c in n·x + c
-  double key = 0.0;           ///< smallest distance over the interval
+  int origin_id = -1;            ///< seed index or pseudo-source vertex
+  double b0 = 0.0, b1 = 0.0;     ///< interval along h, from from(h)
+  Vec2 s = Vec2::Zero();         ///< point: unfolded source (y < 0); line: unit ray direction (y > 0)
+  double sigma = 0.0;            ///< point: offset; line: c in n·x + c
+  double key = 0.0;              ///< smallest distance over the interval
 };
 
 /// A candidate end of a path: the best point found on the boundary.
 struct BoundaryHit {
   double dist = std::numeric_limits<double>::infinity();
-  int halfedge = -1;   ///< boundary half-edge (of the face it belongs to)
-  double t = 0.0;      ///< position from(halfedge) + t (to - from)
+  int halfedge = -1;  ///< boundary half-edge (of the face it belongs to)
+  double t = 0.0;     ///< position from(halfedge) + t (to - from)
   Origin origin = Origin::None;
   int origin_id = -1;  ///< window, vertex (emission or the boundary vertex itself) or seed
 };
@@ -129,12 +142,13 @@ class GeodesicPropagation {
  private:
   struct Seed {
     int face;
-    Vec3 bp, bq;   // barycentric coordinates in face
-    Vec2 p2, q2;   // in the frame of face_start(face)
+    Vec3 bp, bq;  // barycentric coordinates in face
+    Vec2 p2, q2;  // in the frame of face_start(face)
   };
   struct QueueItem {
     double key;
-    int id;  // >= 0 window, < 0: vertex -(id + 1)
+    int id;    // >= 0 window, < 0: vertex -(id + 1)
+    Window w;  // windows: a copy (processing it then reads no scattered memory)
   };
   /// Monotone priority queue (radix heap on the order-preserving bit pattern
   /// of the key): the keys pushed while an item is processed are never
@@ -152,13 +166,13 @@ class GeodesicPropagation {
     uint64_t last_ = 0;
     size_t size_ = 0;
   };
-  /// Open-addressing map (half-edge, root) -> last pending window with that
-  /// half-edge and root: the candidates for merging (push_window()).
-  struct MergeSlot {
-    uint64_t key;  // 0: empty
-    int head;
+  /// A pending window in the merge candidates of its half-edge.
+  struct PendingRef {
+    uint32_t root;  ///< origin, origin_id, aux and line packed (root_code())
+    int id;
+    double sx, sigma;  ///< copies of the window's, to reject most candidates without reading it
   };
-  int& merge_head(int h, const Window& w);
+  static uint32_t root_code(const Window& w);
 
   void seed_face(int f, const Vec3& bp, const Vec3& bq, bool point, const std::vector<Vec2>& cons);
   void check_point(const SurfacePoint& p) const;
@@ -168,7 +182,7 @@ class GeodesicPropagation {
   /// Trims w to the part not dominated by the ends of its edge; true when
   /// nothing is left or a vertex of the faces at the edge dominates it all.
   bool dominated(Window& w, const Vec2* extra, int extra_vertex) const;
-  void propagate(int wi);
+  void propagate(const Window& w, int wi);
   void emit_vertex(int v);
   double back_angle(int v) const;
   void make_child(const Window& parent, int wi, int k, double x0, double x1);
@@ -187,8 +201,9 @@ class GeodesicPropagation {
   std::vector<Origin> vorigin_;
   std::vector<int> vorigin_id_;
   std::vector<Window> windows_;
-  std::vector<MergeSlot> merge_;  ///< size a power of 2, at most half full
-  size_t merge_used_ = 0;
+  /// Per half-edge: its pending windows, the candidates for merging
+  /// (push_window()); contiguous, so the scan is cheap.
+  std::vector<std::vector<PendingRef>> pending_;
   std::vector<Seed> seeds_;
   RadixQueue queue_;
   BoundaryHit boundary_;

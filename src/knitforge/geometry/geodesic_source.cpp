@@ -55,8 +55,8 @@ void check_face_indices(const TriMesh& mesh) {
   for (int f = 0; f < mesh.num_faces(); ++f)
     for (int k = 0; k < 3; ++k)
       if (mesh.faces[f][k] < 0 || mesh.faces[f][k] >= n)
-        throw InvalidInput(fmt::format("geodesic source: face {} uses vertex index {} outside [0, {})",
-                                       f, mesh.faces[f][k], n));
+        throw InvalidInput(fmt::format("geodesic source: face {} uses vertex index {} outside [0, {})", f,
+                                       mesh.faces[f][k], n));
 }
 
 double mesh_scale(const TriMesh& mesh) {
@@ -255,22 +255,20 @@ double GeodesicSource::length(const TriMesh& mesh) const {
 
 Vec3 surface_point_position(const TriMesh& mesh, const SurfacePoint& p) {
   const auto& f = mesh.faces[p.face];
-  return p.bary[0] * mesh.vertices[f[0]] + p.bary[1] * mesh.vertices[f[1]] +
-         p.bary[2] * mesh.vertices[f[2]];
+  return p.bary[0] * mesh.vertices[f[0]] + p.bary[1] * mesh.vertices[f[1]] + p.bary[2] * mesh.vertices[f[2]];
 }
 
 SurfacePoint surface_point_at_vertex(const TriMesh& mesh, int v) {
   if (v < 0 || v >= mesh.num_vertices())
-    throw InvalidInput(fmt::format("vertex id {} is out of range: the mesh has {} vertices (ids 0 to {})",
-                                   v, mesh.num_vertices(), mesh.num_vertices() - 1));
+    throw InvalidInput(fmt::format("vertex id {} is out of range: the mesh has {} vertices (ids 0 to {})", v,
+                                   mesh.num_vertices(), mesh.num_vertices() - 1));
   for (int f = 0; f < mesh.num_faces(); ++f)
     if (corner_of(mesh, f, v) >= 0) return point_in_face(mesh, f, v, v, 0.0);
   throw InvalidInput(fmt::format("vertex {} is used by no face, so it is not on the surface", v));
 }
 
 SurfacePoint surface_point_on_edge(const TriMesh& mesh, int v0, int v1, double t) {
-  if (!(t >= 0.0 && t <= 1.0))
-    throw InvalidInput(fmt::format("edge ratio {} is outside [0, 1]", t));
+  if (!(t >= 0.0 && t <= 1.0)) throw InvalidInput(fmt::format("edge ratio {} is outside [0, 1]", t));
   for (int f = 0; f < mesh.num_faces(); ++f)
     if (corner_of(mesh, f, v0) >= 0 && corner_of(mesh, f, v1) >= 0 && v0 != v1)
       return point_in_face(mesh, f, v0, v1, t);
@@ -367,9 +365,9 @@ GeodesicSource source_from_plane(const TriMesh& mesh, const Vec3& normal, double
 namespace {
 
 struct BoundaryLoopData {
-  std::vector<int> loop;       // vertices
-  std::vector<int> halfedge;   // boundary half-edge loop[i] -> loop[i+1]
-  std::vector<double> arc;     // arc length at loop[i]; arc[n] = total
+  std::vector<int> loop;      // vertices
+  std::vector<int> halfedge;  // boundary half-edge loop[i] -> loop[i+1]
+  std::vector<double> arc;    // arc length at loop[i]; arc[n] = total
 };
 
 std::vector<BoundaryLoopData> boundary_loop_data(const TriMesh& mesh, const Halfedges& he) {
@@ -398,14 +396,16 @@ GeodesicSource source_from_boundary(const TriMesh& mesh, double begin_fraction, 
   for (double fr : {begin_fraction, end_fraction})
     if (!(fr >= 0.0 && fr <= 1.0))
       throw InvalidInput(fmt::format(
-          "boundary source: arc-length fraction {} is outside [0, 1] (0 and 1 are the loop's first vertex)", fr));
+          "boundary source: arc-length fraction {} is outside [0, 1] (0 and 1 are the loop's first vertex)",
+          fr));
   if (mesh.faces.empty()) throw InvalidInput("boundary source: the mesh has no faces");
   check_face_indices(mesh);
   const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
   const auto loops = boundary_loop_data(mesh, he);
   if (loop < 0 || loop >= static_cast<int>(loops.size()))
-    throw InvalidInput(fmt::format("boundary source: loop index {} is out of range: the mesh has {} boundary loop(s)",
-                                   loop, loops.size()));
+    throw InvalidInput(
+        fmt::format("boundary source: loop index {} is out of range: the mesh has {} boundary loop(s)", loop,
+                    loops.size()));
   const BoundaryLoopData& d = loops[loop];
   const int n = static_cast<int>(d.loop.size());
   const double total = d.arc[n];
@@ -454,7 +454,8 @@ GeodesicSource source_from_boundary(const TriMesh& mesh, double begin_fraction, 
   // Drop repeated points (a fraction exactly at a vertex).
   std::vector<SurfacePoint> clean;
   for (const SurfacePoint& p : line)
-    if (clean.empty() || (surface_point_position(mesh, p) - surface_point_position(mesh, clean.back())).norm() > 0.0)
+    if (clean.empty() ||
+        (surface_point_position(mesh, p) - surface_point_position(mesh, clean.back())).norm() > 0.0)
       clean.push_back(p);
   src.polylines.push_back(std::move(clean));
   return src;
@@ -468,10 +469,12 @@ GeodesicSource source_from_boundary_vertices(const TriMesh& mesh, const std::vec
   std::vector<char> in(mesh.num_vertices(), 0);
   for (int v : ids) {
     if (v < 0 || v >= mesh.num_vertices())
-      throw InvalidInput(fmt::format("boundary vertex source: vertex id {} is out of range (the mesh has {} vertices)",
-                                     v, mesh.num_vertices()));
+      throw InvalidInput(
+          fmt::format("boundary vertex source: vertex id {} is out of range (the mesh has {} vertices)", v,
+                      mesh.num_vertices()));
     if (he.is_isolated_vertex(v) || !he.is_boundary_vertex(v))
-      throw InvalidInput(fmt::format("boundary vertex source: vertex {} is not on the boundary of the surface", v));
+      throw InvalidInput(
+          fmt::format("boundary vertex source: vertex {} is not on the boundary of the surface", v));
     in[v] = 1;
   }
   GeodesicSource src;
@@ -617,8 +620,7 @@ GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>
   if (mesh.faces.empty()) throw InvalidInput("polyline source: the mesh has no faces");
   check_face_indices(mesh);
   for (size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite())
-      throw InvalidInput(fmt::format("polyline source: point {} is not finite", i));
+    if (!points[i].allFinite()) throw InvalidInput(fmt::format("polyline source: point {} is not finite", i));
   const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
   const std::vector<Vec3> fn = face_normals(mesh);
   std::vector<SurfacePoint> proj;
@@ -628,7 +630,8 @@ GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>
     if (!join_on_surface(mesh, he, fn, proj[i], proj[i + 1], line))
       throw InvalidInput(fmt::format(
           "polyline source: points {} and {} cannot be joined along the surface (their normal section "
-          "leaves the surface or turns back); add intermediate points or check that both are on the same part",
+          "leaves the surface or turns back); add intermediate points or check that both are on the same "
+          "part",
           i, i + 1));
   }
   GeodesicSource src;

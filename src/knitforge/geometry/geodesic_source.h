@@ -96,8 +96,8 @@ GeodesicSource source_from_plane(const TriMesh& mesh, const Vec3& normal, double
 ///        loop index is out of range (the message gives the number of loops),
 ///        or the mesh is not a valid surface (TopologyError from
 ///        build_halfedges()).
-GeodesicSource source_from_boundary(const TriMesh& mesh, double begin_fraction,
-                                    double end_fraction, int loop = 0);
+GeodesicSource source_from_boundary(const TriMesh& mesh, double begin_fraction, double end_fraction,
+                                    int loop = 0);
 
 /// The given boundary vertices and the boundary edges joining two of them
 /// (runs of consecutive boundary vertices become polylines along the

@@ -27,6 +27,7 @@ struct Grid {
   std::vector<int> left, right;  // span per map row
   std::vector<char> collapsed;   // Out cells collapsed in their column
   std::vector<uint8_t> need;     // shaping demands per cell
+  std::vector<int> slot;         // pattern row (units of the stitch height) per cell
   uint8_t& at(int r, int c) { return state[static_cast<size_t>(r) * cols + c]; }
   uint8_t at(int r, int c) const { return state[static_cast<size_t>(r) * cols + c]; }
   size_t idx(int r, int c) const { return static_cast<size_t>(r) * cols + c; }
@@ -118,6 +119,196 @@ bool shrink_left_pair(Grid& g, int m) {
     ++g.left[r];
   }
   return true;
+}
+
+using Bitmap = std::vector<std::vector<char>>;
+
+// Fabric runs [first, last] of a bitmap row.
+std::vector<std::pair<int, int>> runs_of(const std::vector<char>& row) {
+  std::vector<std::pair<int, int>> runs;
+  const int n = static_cast<int>(row.size());
+  for (int c = 0; c < n;) {
+    if (!row[c]) {
+      ++c;
+      continue;
+    }
+    const int s = c;
+    while (c < n && row[c]) ++c;
+    runs.emplace_back(s, c - 1);
+  }
+  return runs;
+}
+
+// A band: bitmap rows a..b split by a horizontal hole into a left segment
+// [row start, lend[k]] (none when !has_l[k]) and a right segment
+// [rstart[k], row end] (none when !has_r[k]); k = i - a. Knitted as all
+// right segments (short-row pairs turning at the hole), one row crossing
+// below the hole, then all left segments (seed §2.3.2).
+struct Band {
+  int a = 0;
+  int b = 0;
+  std::vector<int> lend, rstart;
+  std::vector<char> has_l, has_r;
+};
+
+// Builds the band of rows a..b of `bits` from each row's runs: two runs are
+// the left and the right segment; one run is the left or the right one by
+// its position against the two-run rows' holes. Returns false when the rows
+// do not split that way, when a column would lie on the left in one row and
+// on the right in another (the sides are knitted one after the other), or
+// when the hole is taller than wide in mm (then it is a vertical dart: short
+// columns).
+bool make_band(const Bitmap& bits, int a, int b, double sw, double bh, Band& band) {
+  const int nb = static_cast<int>(bits.size());
+  if (a < 1 || b > nb - 2 || a > b) return false;
+  const int n = b - a + 1;
+  band = Band{};
+  band.a = a;
+  band.b = b;
+  band.lend.assign(n, -1);
+  band.rstart.assign(n, -1);
+  band.has_l.assign(n, 0);
+  band.has_r.assign(n, 0);
+  int hole_lo = std::numeric_limits<int>::max();  // intersection of the two-run rows' holes
+  int hole_hi = std::numeric_limits<int>::min();
+  int widest = 0;
+  bool any_two = false;
+  std::vector<std::vector<std::pair<int, int>>> runs(n);
+  for (int k = 0; k < n; ++k) {
+    runs[k] = runs_of(bits[a + k]);
+    if (runs[k].empty() || runs[k].size() > 2) return false;
+    if (runs[k].size() == 2) {
+      const int lo = runs[k][0].second + 1;
+      const int hi = runs[k][1].first - 1;
+      hole_lo = any_two ? std::max(hole_lo, lo) : lo;
+      hole_hi = any_two ? std::min(hole_hi, hi) : hi;
+      widest = std::max(widest, hi - lo + 1);
+      any_two = true;
+      band.has_l[k] = band.has_r[k] = 1;
+      band.lend[k] = runs[k][0].second;
+      band.rstart[k] = runs[k][1].first;
+    }
+  }
+  if (!any_two || widest * sw < n * bh) return false;
+  bool any_l = false;
+  bool any_r = false;
+  int max_lend = -1;
+  int min_rstart = std::numeric_limits<int>::max();
+  for (int k = 0; k < n; ++k) {
+    if (runs[k].size() == 1) {
+      const auto [l, r] = runs[k][0];
+      if (hole_lo <= hole_hi && r < hole_lo) {
+        band.has_l[k] = 1;
+        band.lend[k] = r;
+      } else if (hole_lo <= hole_hi && l > hole_hi) {
+        band.has_r[k] = 1;
+        band.rstart[k] = l;
+      } else {
+        return false;  // the run crosses the hole: not split
+      }
+    }
+    if (band.has_l[k]) {
+      any_l = true;
+      max_lend = std::max(max_lend, band.lend[k]);
+    }
+    if (band.has_r[k]) {
+      any_r = true;
+      min_rstart = std::min(min_rstart, band.rstart[k]);
+    }
+  }
+  return any_l && any_r && max_lend < min_rstart;
+}
+
+// Bands of `bits` (sorted, disjoint, at least one plain row between two):
+// (1) around each hole (non-fabric component not reaching the bitmap's
+// border); (2) at the bottom / top above / below an added long row, the rows
+// from the long row up to where the branches join. Before that, a vertical
+// hole closed off only by an added long row (a vertical dart opening at the
+// pattern's edge) is opened through the long row, so its gap stays open to
+// the edge (short columns ending / starting there).
+std::vector<Band> find_bands(Bitmap& bits, bool long_bottom, bool long_top, double sw, double bh) {
+  const int nb = static_cast<int>(bits.size());
+  const int nc = nb > 0 ? static_cast<int>(bits[0].size()) : 0;
+  std::vector<Band> bands;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<char> seen(static_cast<size_t>(nb) * nc, 0);
+    auto visited = [&](int i, int c) -> char& { return seen[static_cast<size_t>(i) * nc + c]; };
+    for (int i0 = 0; i0 < nb; ++i0) {
+      for (int c0 = 0; c0 < nc; ++c0) {
+        if (bits[i0][c0] || visited(i0, c0)) continue;
+        std::vector<std::pair<int, int>> stack = {{i0, c0}};
+        std::vector<std::pair<int, int>> cells;
+        visited(i0, c0) = 1;
+        bool border = false;
+        while (!stack.empty()) {
+          const auto [i, c] = stack.back();
+          stack.pop_back();
+          cells.emplace_back(i, c);
+          if (i == 0 || i == nb - 1 || c == 0 || c == nc - 1) border = true;
+          const int di[4] = {1, -1, 0, 0};
+          const int dc[4] = {0, 0, 1, -1};
+          for (int k = 0; k < 4; ++k) {
+            const int ni = i + di[k];
+            const int nk = c + dc[k];
+            if (ni < 0 || ni >= nb || nk < 0 || nk >= nc || bits[ni][nk] || visited(ni, nk)) continue;
+            visited(ni, nk) = 1;
+            stack.emplace_back(ni, nk);
+          }
+        }
+        if (border) continue;
+        int a = nb;
+        int b = -1;
+        int cmin = nc;
+        int cmax = -1;
+        for (const auto& [i, c] : cells) {
+          a = std::min(a, i);
+          b = std::max(b, i);
+          cmin = std::min(cmin, c);
+          cmax = std::max(cmax, c);
+        }
+        const bool vertical = (cmax - cmin + 1) * sw < (b - a + 1) * bh;
+        if (pass == 0 && vertical) {
+          for (const auto& [i, c] : cells) {
+            if (long_bottom && a == 1 && i == 1) bits[0][c] = 0;
+            if (long_top && b == nb - 2 && i == nb - 2) bits[nb - 1][c] = 0;
+          }
+        }
+        Band band;
+        if (pass == 1 && !vertical && make_band(bits, a, b, sw, bh, band)) bands.push_back(std::move(band));
+      }
+    }
+  }
+  // Branches at the ends under / over a long row: from the long row inwards,
+  // rows of one run (the tip of one branch), then rows of two runs (both
+  // branches), up to the first row that is not of two runs (they joined).
+  for (int side = 0; side < 2; ++side) {
+    if (!(side == 0 ? long_bottom : long_top) || nb < 3) continue;
+    const int step = side == 0 ? 1 : -1;
+    int i = side == 0 ? 1 : nb - 2;
+    int first_two = -1;
+    int last = -1;
+    for (; i >= 1 && i <= nb - 2; i += step) {
+      const size_t nr = runs_of(bits[i]).size();
+      if (nr == 2) {
+        if (first_two < 0) first_two = i;
+      } else if (nr != 1 || first_two >= 0) {
+        break;
+      }
+      last = i;
+    }
+    if (first_two < 0) continue;
+    Band band;
+    const int a = side == 0 ? 1 : last;
+    const int b = side == 0 ? last : nb - 2;
+    if (make_band(bits, a, b, sw, bh, band)) bands.push_back(std::move(band));
+  }
+  std::sort(bands.begin(), bands.end(), [](const Band& x, const Band& y) { return x.a < y.a; });
+  std::vector<Band> kept;
+  for (auto& band : bands) {
+    if (!kept.empty() && band.a < kept.back().b + 2) continue;
+    kept.push_back(std::move(band));
+  }
+  return kept;
 }
 
 }  // namespace
@@ -260,6 +451,8 @@ RasterizedPattern rasterize_pattern(const TriMesh& mesh, const std::vector<Vec2>
   };
 
   // 2. Long rows.
+  bool added_bottom = false;
+  bool added_top = false;
   if (options.long_rows) {
     for (int side = 0; side < 2; ++side) {
       const int n = static_cast<int>(rows.size());
@@ -276,11 +469,23 @@ RasterizedPattern rasterize_pattern(const TriMesh& mesh, const std::vector<Vec2>
       if (has_gap(end_row) || l > ul || r < ur) {
         std::vector<char> long_row(nc, 0);
         for (int col = ul; col <= ur; ++col) long_row[col] = 1;
+        // A single-run end row next to a row of two branches is the tip of
+        // one branch: the long row takes its place, so the notch between
+        // the branches ends at the long row (and is knitted as a dart).
+        const int inner = side == 0 ? 1 : n - 2;
+        if (n >= 3 && runs_of(end_row).size() == 1 && runs_of(rows[inner]).size() == 2) {
+          rows[side == 0 ? 0 : n - 1] = long_row;
+          (side == 0 ? added_bottom : added_top) = true;
+          ++out.added_long_rows;
+          continue;
+        }
         if (side == 0) {
           rows.insert(rows.begin(), long_row);
           y0 -= bh;
+          added_bottom = true;
         } else {
           rows.push_back(long_row);
+          added_top = true;
         }
         ++out.added_long_rows;
       }
@@ -288,30 +493,84 @@ RasterizedPattern rasterize_pattern(const TriMesh& mesh, const std::vector<Vec2>
   }
   nb = static_cast<int>(rows.size());
 
-  // 3. Map rows with aligned right ends and extended left ends.
+  // 2b. Bands around horizontal holes and branches (see find_bands()).
+  const std::vector<Band> bands = find_bands(rows, added_bottom, added_top, sw, bh);
+  out.short_row_holes = static_cast<int>(bands.size());
+
+  // 3. Map rows with aligned right ends and extended left ends; a band of
+  //    rows around a horizontal hole is knitted right side first, then left.
   std::vector<int> bl(nb);
   std::vector<int> br(nb);
   for (int i = 0; i < nb; ++i) std::tie(bl[i], br[i]) = span_of(rows[i]);
+  struct RowSpec {
+    int i;           // bitmap row
+    int lo, hi;      // natural span (cells from the bitmap row)
+    int slot;        // pattern row (units of sh) of the row's cells ...
+    int split = -1;  // ... and from this column on (>= 0) ...
+    int slot2 = 0;   // ... this one (the row crossing a band)
+  };
+  std::vector<RowSpec> specs;
+  {
+    size_t next_band = 0;
+    for (int i = 0; i < nb;) {
+      if (next_band < bands.size() && bands[next_band].a == i + 1) {
+        const Band& band = bands[next_band++];
+        // Pattern rows: the right side is knitted half a row lower (its
+        // rows 2k - 1, 2k), so the crossing row lies on top of it there
+        // (2 k_last + 1) and under the left side elsewhere (2i + 1).
+        specs.push_back({i, bl[i], br[i], 2 * i});
+        int right_from = nc;
+        int last_r = i;
+        for (int k = band.a; k <= band.b; ++k) {
+          if (!band.has_r[k - band.a]) continue;
+          const int lo = band.rstart[k - band.a];
+          right_from = std::min(right_from, lo);
+          last_r = k;
+          specs.push_back({k, lo, br[k], 2 * k - 1});
+          specs.push_back({k, lo, br[k], 2 * k});
+        }
+        specs.push_back({i, bl[i], br[i], 2 * i + 1, right_from, 2 * last_r + 1});
+        for (int k = band.a; k <= band.b; ++k) {
+          if (!band.has_l[k - band.a]) continue;
+          const int hi = band.lend[k - band.a];
+          specs.push_back({k, bl[k], hi, 2 * k});
+          specs.push_back({k, bl[k], hi, 2 * k + 1});
+        }
+        i = band.b + 1;
+      } else {
+        specs.push_back({i, bl[i], br[i], 2 * i});
+        specs.push_back({i, bl[i], br[i], 2 * i + 1});
+        ++i;
+      }
+    }
+  }
   Grid g;
-  g.rows = 2 * nb;
+  g.rows = static_cast<int>(specs.size());
   g.cols = nc;
   g.state.assign(static_cast<size_t>(g.rows) * nc, kOut);
+  g.slot.assign(static_cast<size_t>(g.rows) * nc, 0);
   g.left.resize(g.rows);
   g.right.resize(g.rows);
   for (int m = 0; m < g.rows; ++m) {
-    const int i = m / 2;
-    g.right[m] = br[i];
-    if (m % 2 == 0) {
-      g.left[m] = i == 0 ? bl[0] : std::min(bl[i - 1], bl[i]);
-    } else {
-      g.left[m] = i + 1 < nb ? std::min(bl[i], bl[i + 1]) : bl[i];
-    }
-    for (int col = g.left[m]; col <= g.right[m]; ++col) {
-      if (col < bl[i]) {
+    // Rows m, m+1 share their right end when m goes left to right (even m),
+    // their left end otherwise: each row starts where the previous ended.
+    const RowSpec& s = specs[m];
+    int l = s.lo;
+    int r = s.hi;
+    if (m % 2 == 0 && m + 1 < g.rows) r = std::max(r, specs[m + 1].hi);
+    if (m % 2 == 1 && m > 0) r = std::max(r, specs[m - 1].hi);
+    if (m % 2 == 1 && m + 1 < g.rows) l = std::min(l, specs[m + 1].lo);
+    if (m % 2 == 0 && m > 0) l = std::min(l, specs[m - 1].lo);
+    g.left[m] = l;
+    g.right[m] = r;
+    for (int col = 0; col < nc; ++col)
+      g.slot[g.idx(m, col)] = s.split >= 0 && col >= s.split ? s.slot2 : s.slot;
+    for (int col = l; col <= r; ++col) {
+      if (col < s.lo || col > s.hi) {
         g.at(m, col) = kFabric;
         ++out.extended_cells;
       } else {
-        g.at(m, col) = rows[i][col] ? kFabric : kGap;
+        g.at(m, col) = rows[s.i][col] ? kFabric : kGap;
       }
     }
   }
@@ -451,6 +710,7 @@ RasterizedPattern rasterize_pattern(const TriMesh& mesh, const std::vector<Vec2>
   }
   out.map = std::move(map);
   out.origin = Vec2(x0, y0);
+  out.cell_pattern_row = std::move(g.slot);
   out.bitmap_rows = nb;
   out.bitmap_cols = nc;
   return out;
