@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <ostream>
 
 #include <fmt/core.h>
 
@@ -15,6 +16,7 @@
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/ply_format.h"
 #include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/util/atomic_file.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge::cli {
@@ -33,11 +35,10 @@ KnitParams parse_stitch_size(const std::string& text) {
       ok = false;
     }
   }
-  if (!ok || !std::isfinite(p.stitch_width) || !std::isfinite(p.stitch_height) ||
-      p.stitch_width <= 0 || p.stitch_height <= 0) {
+  if (!ok || !std::isfinite(p.stitch_width) || !std::isfinite(p.stitch_height) || p.stitch_width <= 0 ||
+      p.stitch_height <= 0) {
     throw InvalidInput(fmt::format(
-        "--stitch '{}': expected WIDTHxHEIGHT in millimetres with positive numbers, e.g. 3.5x2.8",
-        text));
+        "--stitch '{}': expected WIDTHxHEIGHT in millimetres with positive numbers, e.g. 3.5x2.8", text));
   }
   return p;
 }
@@ -123,6 +124,12 @@ bool is_stitch_mesh_ply(const std::string& path) {
   const ply_detail::PlyHeader header = ply_detail::read_ply_header(path, data);
   const int face = header.find("face");
   return face >= 0 && header.elements[face].find("type") >= 0;
+}
+
+void write_report_json(const std::string& path, const nlohmann::json& report, bool print) {
+  const std::string text = report.dump(2) + "\n";
+  write_file_atomically(path, [&](std::ostream& os) { os << text; });
+  if (print) std::fputs(text.c_str(), stdout);
 }
 
 void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }

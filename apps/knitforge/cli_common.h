@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "knitforge/core/knit_params.h"
 #include "knitforge/core/knitting_map.h"
@@ -78,6 +79,10 @@ TriMesh load_surface_or_shape(const std::string& input, const std::string& units
 
 /// Adds the standard "--stitch WxH" option.
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);
+
+/// Writes a design command's report (indented JSON) to `path` atomically
+/// and, when `print` (--json), also to stdout.
+void write_report_json(const std::string& path, const nlohmann::json& report, bool print);
 
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);

@@ -258,9 +258,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                            {"evaluation", k.seconds.evaluate},
                            {"output", t.seconds()}};
       report["seconds"]["total"] = all.seconds();
-      const std::string text = report.dump(2) + "\n";
-      write_file_atomically(out("report.json"), [&](std::ostream& os) { os << text; });
-      if (o->json) std::fputs(text.c_str(), stdout);
+      write_report_json(out("report.json"), report, o->json);
       write_report_html(o->outdir);
 
       note(fmt::format(

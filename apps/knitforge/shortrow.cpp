@@ -13,6 +13,7 @@
 #include "knitforge/design/shortrow/design_short_rows.h"
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/evaluate/scalar_stats.h"
+#include "knitforge/evaluate/stitch_distortion.h"
 #include "knitforge/geometry/cut_mesh_along_path.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/shapes.h"
@@ -25,7 +26,6 @@
 #include "knitforge/io/polyline_obj.h"
 #include "knitforge/io/report_html.h"
 #include "knitforge/io/stitch_mesh_ply.h"
-#include "knitforge/util/atomic_file.h"
 #include "knitforge/util/timer.h"
 
 namespace knitforge::cli {
@@ -212,13 +212,13 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       auto out = [&](const char* name) { return (dir / name).string(); };
       StitchMeshPlyOptions ply;
       ply.ascii = o->ascii;
+      const std::vector<double> designed_distortion =
+          d.evaluation ? distortion_values(d.evaluation->designed_distortion) : std::vector<double>{};
       {
         // Per-stitch evaluation values go into the stitch mesh for viewers.
         StitchMeshPlyOptions designed = ply;
         if (d.evaluation) {
-          std::vector<double> distortion;
-          for (const auto& s : d.evaluation->designed_distortion) distortion.push_back(s.distortion);
-          designed.scalars.push_back({"distortion", distortion});
+          designed.scalars.push_back({"distortion", designed_distortion});
           designed.scalars.push_back({"shape_error", d.evaluation->stitch_error});
         }
         write_stitch_mesh_ply(out("stitch_mesh.ply"), d.stitch_mesh, designed);
@@ -255,16 +255,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (d.evaluation) {
         const StitchMeshEvaluation& ev = *d.evaluation;
         StitchMeshPlyOptions relaxed = ply;
-        std::vector<double> relaxed_distortion;
-        for (const auto& s : ev.relaxed_distortion) relaxed_distortion.push_back(s.distortion);
         relaxed.scalars.push_back({"shape_error", ev.stitch_error});
-        relaxed.scalars.push_back({"distortion", relaxed_distortion});
+        relaxed.scalars.push_back({"distortion", distortion_values(ev.relaxed_distortion)});
         write_stitch_mesh_ply(out("relaxed.ply"), ev.relaxed, relaxed);
         write_coloured_stitches(out("shape_error.ply"), ev.relaxed, ev.stitch_error,
                                 ev.stitch_error_stats.max);
-        std::vector<double> distortion;
-        for (const auto& s : ev.designed_distortion) distortion.push_back(s.distortion);
-        write_coloured_stitches(out("distortion.ply"), d.stitch_mesh, distortion,
+        write_coloured_stitches(out("distortion.ply"), d.stitch_mesh, designed_distortion,
                                 ev.designed_distortion_stats.max);
         report["evaluation"] = {
             {"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
@@ -331,9 +327,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                            {"design_total", d.seconds.total},
                            {"output", t.seconds()}};
       report["seconds"]["total"] = all.seconds();
-      const std::string text = report.dump(2) + "\n";
-      write_file_atomically(out("report.json"), [&](std::ostream& os) { os << text; });
-      if (o->json) std::fputs(text.c_str(), stdout);
+      write_report_json(out("report.json"), report, o->json);
       if (!o->no_report) {
         write_report_html(o->outdir);
         note("report page -> " + out("report.html"));

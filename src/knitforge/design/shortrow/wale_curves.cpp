@@ -34,14 +34,6 @@ namespace {
 int enclosed_extremum(const TriMesh& mesh, const Halfedges& he, const std::vector<double>& field,
                       const Isocurve& curve) {
   const int nv = mesh.num_vertices();
-  // Vertex neighbours from the faces (Halfedges::vertex_neighbors works per vertex).
-  std::vector<std::vector<int>> adjacency(nv);
-  for (const auto& t : mesh.faces) {
-    for (int k = 0; k < 3; ++k) {
-      adjacency[t[k]].push_back(t[(k + 1) % 3]);
-      adjacency[t[(k + 1) % 3]].push_back(t[k]);
-    }
-  }
   for (int side : {+1, -1}) {
     std::vector<int> seeds;
     for (const MeshPoint& p : curve.points) {
@@ -66,7 +58,7 @@ int enclosed_extremum(const TriMesh& mesh, const Halfedges& he, const std::vecto
       queue.pop_front();
       if (he.is_boundary_vertex(v)) touches_boundary = true;
       if (best < 0 || field[v] * side > field[best] * side || (field[v] == field[best] && v < best)) best = v;
-      for (int w : adjacency[v]) {
+      for (int w : he.vertex_neighbors(v)) {
         if (!seen[w] && (field[w] - curve.value) * side > 0) {
           seen[w] = 1;
           queue.push_back(w);
