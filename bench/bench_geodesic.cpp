@@ -60,6 +60,28 @@ void BM_GeodesicFieldPlaneX0(benchmark::State& state) {
 }
 BENCHMARK(BM_GeodesicFieldPlaneX0)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
+// The approximate field (GeodesicOptions::tolerance, mm) for short-row use.
+void BM_GeodesicFieldPlaneX0Approx(benchmark::State& state) {
+  const TriMesh& m = mesh_for(static_cast<int>(state.range(0)));
+  GeodesicOptions opt;
+  opt.tolerance = static_cast<double>(state.range(1)) * 1e-4;
+  GeodesicField f;
+  for (auto _ : state) {
+    const GeodesicSource src = source_from_plane(m, Vec3(1, 0, 0), 0.0);
+    f = geodesic_distance(m, src, opt);
+    benchmark::DoNotOptimize(f.distance.data());
+  }
+  state.SetLabel(name_of(static_cast<int>(state.range(0))));
+  state.counters["tol_mm"] = opt.tolerance;
+  state.counters["windows"] = static_cast<double>(f.num_windows);
+}
+BENCHMARK(BM_GeodesicFieldPlaneX0Approx)
+    ->Args({0, 10})
+    ->Args({1, 10})
+    ->Args({3, 10})
+    ->Args({3, 30})
+    ->Unit(benchmark::kMillisecond);
+
 // The stages separately on mannequin_front: source, precomputation, propagation.
 void BM_GeodesicSourcePlane(benchmark::State& state) {
   const TriMesh& m = mesh_for(static_cast<int>(state.range(0)));

@@ -147,6 +147,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", source, cut;
     double diffusion = -1.0, diffusion_length = -1.0, lambda = -1.0, edge = kDefaultShapeEdgeLength;
     int relax_iterations = -1;
+    double bending = -1;
+    double field_tolerance = -1;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
   };
   auto o = std::make_shared<Opts>();
@@ -177,6 +179,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_option("--relax-iterations", o->relax_iterations,
                   "Shape-Up iterations of the evaluation's relaxation (default 60)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--field-tolerance", o->field_tolerance,
+                  "Accuracy of the geodesic field as a fraction of the stitch width (default 1e-3; 0 = exact)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--bending", o->bending,
+                  "Bending stiffness of the evaluation's rest shape, relative to the stitch shape (0 = none)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
@@ -201,6 +209,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (o->diffusion_length > 0) opt.tessellation.diffusion_length = o->diffusion_length;
       opt.evaluate = !o->no_evaluate;
       if (o->relax_iterations > 0) opt.evaluation.relax.max_iterations = o->relax_iterations;
+      if (o->bending >= 0) opt.evaluation.relax.bending = o->bending;
+      if (o->field_tolerance >= 0) opt.field_tolerance = o->field_tolerance;
       opt.progress = [](const std::string& stage) { note(stage + " ..."); };
       const ShortRowDesign d = design_short_rows(surface, source, opt);
 
@@ -292,7 +302,9 @@ void add_shortrow_command(CLI::App& app, Action& action) {
           {"stitch_height_mm", params.stitch_height},
           {"lambda_mm", o->lambda > 0 ? o->lambda : params.stitch_width + 2 * params.stitch_height},
           {"diffusion_mu_mm", o->diffusion >= 0 ? o->diffusion : 100 * params.stitch_width},
-          {"diffusion_length_mm", o->diffusion_length > 0 ? o->diffusion_length : params.stitch_width}};
+          {"diffusion_length_mm", o->diffusion_length > 0 ? o->diffusion_length : params.stitch_width},
+          {"field_tolerance_mm", opt.field_tolerance * params.stitch_width},
+          {"evaluation_bending", opt.evaluation.relax.bending}};
       report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
                           {"quads", types[static_cast<int>(StitchType::Knit)]},
                           {"short_row_ends", short_row_ends},

@@ -48,6 +48,20 @@ double edge_length_error(const StitchMesh& m, const KnitParams& p) {
   return worst;
 }
 
+// Largest distance of a vertex from the least-squares plane of all vertices.
+double non_planarity(const std::vector<Vec3>& pts) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : pts) c += p;
+  c /= static_cast<double>(pts.size());
+  Eigen::MatrixXd a(pts.size(), 3);
+  for (size_t k = 0; k < pts.size(); ++k) a.row(k) = (pts[k] - c).transpose();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinV);
+  const Vec3 n = svd.matrixV().col(2);
+  double worst = 0;
+  for (const Vec3& p : pts) worst = std::max(worst, std::abs((p - c).dot(n)));
+  return worst;
+}
+
 }  // namespace
 
 TEST(RelaxStitchMesh, IdealShapes) {
@@ -119,6 +133,53 @@ TEST(RelaxStitchMesh, BentRectangleRelaxesToRigidStitches) {
   for (size_t k = 1; k < r.energy.size(); ++k) EXPECT_LE(r.energy[k], r.energy[k - 1] * (1 + 1e-12));
 }
 
+TEST(RelaxStitchMesh, BendingHingesAreFlatPairsOfIdealStitches) {
+  // A flat layout of ideal stitches has zero energy with the bending term
+  // too: every hinge target is the two ideal shapes joined along their
+  // shared edge, on opposite sides of it.
+  const StitchMesh flat = map_to_stitch_mesh_topology(parse_map({"KKKKK", "KKKKK", "KKKKK", "KKKKK"}), kP);
+  RelaxOptions ro;
+  ro.warm_up = 0;
+  ro.bending = 0.5;
+  ro.max_iterations = 3;
+  const RelaxResult r = relax_stitch_mesh(flat, kP, ro);
+  EXPECT_LT(r.energy.front(), 1e-20);
+  // Bending adds energy only where the fabric folds: the same rectangle
+  // folded along one wale line costs more with bending than without.
+  StitchMesh folded = flat;
+  for (Vec3& p : folded.vertices) {
+    if (p.x() > 2 * kP.stitch_width + 1e-9) {
+      const double d = p.x() - 2 * kP.stitch_width;
+      p.x() = 2 * kP.stitch_width + d * std::cos(0.5);
+      p.z() = d * std::sin(0.5);
+    }
+  }
+  RelaxOptions plain = ro;
+  plain.bending = 0;
+  EXPECT_LT(relax_stitch_mesh(folded, kP, plain).energy.front(), 1e-20);  // a fold costs nothing without it
+  EXPECT_GT(relax_stitch_mesh(folded, kP, ro).energy.front(), 1e-3);
+}
+
+TEST(RelaxStitchMesh, BendingMakesTheRestShapeOfAFlatFabricFlat) {
+  // Without bending, a bent knit-only rectangle relaxes to rigid stitches
+  // but keeps (part of) its bend, since folds are free; with bending it
+  // relaxes all the way back to a plane.
+  const StitchMesh flat = map_to_stitch_mesh_topology(parse_map({"KKKKK", "KKKKK", "KKKKK", "KKKKK"}), kP);
+  StitchMesh bent = flat;
+  for (Vec3& p : bent.vertices) p.z() = 0.02 * (p.x() - 8) * (p.x() - 8) + 0.5 * std::sin(p.y());
+  RelaxOptions ro;
+  ro.warm_up = 0;
+  ro.max_iterations = 5000;
+  ro.tolerance = 1e-14;
+  const RelaxResult free_folds = relax_stitch_mesh(bent, kP, ro);
+  ro.bending = 0.1;
+  const RelaxResult stiff = relax_stitch_mesh(bent, kP, ro);
+  EXPECT_GT(non_planarity(free_folds.mesh.vertices), 0.05);
+  EXPECT_LT(non_planarity(stiff.mesh.vertices), 1e-3);
+  EXPECT_LE(edge_length_error(stiff.mesh, kP), 1e-3);
+  for (size_t k = 1; k < stiff.energy.size(); ++k) EXPECT_LE(stiff.energy[k], stiff.energy[k - 1] * (1 + 1e-12));
+}
+
 TEST(RelaxStitchMesh, ShortRowsRelaxToANonPlanarSurface) {
   RandomMapOptions o;
   o.seed = 5;
@@ -158,6 +219,11 @@ TEST(RelaxStitchMesh, RejectsBadInput) {
   EXPECT_THROW(relax_stitch_mesh(m, KnitParams{-1, 2}), InvalidInput);
   RelaxOptions bad;
   bad.warm_up = -1;
+  EXPECT_THROW(relax_stitch_mesh(m, kP, bad), InvalidInput);
+  bad.warm_up = 0;
+  bad.bending = -0.1;
+  EXPECT_THROW(relax_stitch_mesh(m, kP, bad), InvalidInput);
+  bad.bending = std::nan("");
   EXPECT_THROW(relax_stitch_mesh(m, kP, bad), InvalidInput);
   StitchMesh nan = m;
   nan.vertices[0].x() = std::nan("");

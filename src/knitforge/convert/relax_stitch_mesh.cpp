@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include <fmt/core.h>
 
@@ -26,16 +28,60 @@ std::vector<Vec3> ideal_stitch_shape(StitchType type, const KnitParams& p) {
   throw InvalidInput(fmt::format("unknown stitch type {}", static_cast<int>(type)));
 }
 
+namespace {
+
+/// The hinge polygon of stitches a and b sharing the edge {u, v} (see
+/// RelaxOptions::bending): the corners of a, then those of b that a lacks,
+/// with targets in a's frame, b's ideal shape turned and moved so that its
+/// copy of the shared edge lies on a's (matched at the midpoint, along the
+/// edge direction); b then lies on the other side of the edge because both
+/// stitches run counter-clockwise.
+void add_hinge(const StitchMesh& mesh, int a, int b, int u, int v, const std::vector<Vec3> shapes[],
+               double weight, ShapeUpPolygons& poly) {
+  const Stitch& sa = mesh.stitches[a];
+  const Stitch& sb = mesh.stitches[b];
+  const std::vector<Vec3>& ta = shapes[static_cast<int>(sa.type)];
+  const std::vector<Vec3>& tb = shapes[static_cast<int>(sb.type)];
+  auto corner = [](const Stitch& s, int vertex) {
+    for (int k = 0; k < s.corners(); ++k) {
+      if (s.v[k] == vertex) return k;
+    }
+    return -1;
+  };
+  const int au = corner(sa, u), av = corner(sa, v), bu = corner(sb, u), bv = corner(sb, v);
+  const Eigen::Vector2d ea = (ta[av] - ta[au]).head<2>(), eb = (tb[bv] - tb[bu]).head<2>();
+  if (!(ea.norm() > 0 && eb.norm() > 0)) return;
+  const double angle = std::atan2(ea.y(), ea.x()) - std::atan2(eb.y(), eb.x());
+  const Eigen::Rotation2Dd rot(angle);
+  const Eigen::Vector2d mid_a = 0.5 * (ta[au] + ta[av]).head<2>(), mid_b = 0.5 * (tb[bu] + tb[bv]).head<2>();
+  std::vector<int> vertices;
+  std::vector<Vec3> targets;
+  for (int k = 0; k < sa.corners(); ++k) {
+    vertices.push_back(sa.v[k]);
+    targets.push_back(ta[k]);
+  }
+  for (int k = 0; k < sb.corners(); ++k) {
+    if (corner(sa, sb.v[k]) >= 0) continue;
+    const Eigen::Vector2d q = rot * (tb[k].head<2>() - mid_b) + mid_a;
+    vertices.push_back(sb.v[k]);
+    targets.emplace_back(q.x(), q.y(), 0.0);
+  }
+  poly.add(vertices, targets, weight);
+}
+
+}  // namespace
+
 RelaxResult relax_stitch_mesh(const StitchMesh& mesh, const KnitParams& params, const RelaxOptions& options) {
   if (!(std::isfinite(params.stitch_width) && params.stitch_width > 0 && std::isfinite(params.stitch_height) &&
         params.stitch_height > 0)) {
     throw InvalidInput(fmt::format("stitch size {} x {} mm: both must be finite and > 0", params.stitch_width,
                                    params.stitch_height));
   }
-  if (options.max_iterations < 0 || options.anderson_depth < 0 || !(options.tolerance >= 0) || !(std::isfinite(options.warm_up) && options.warm_up >= 0)) {
+  if (options.max_iterations < 0 || options.anderson_depth < 0 || !(options.tolerance >= 0) || !(std::isfinite(options.warm_up) && options.warm_up >= 0) ||
+      !(std::isfinite(options.bending) && options.bending >= 0)) {
     throw InvalidInput(fmt::format("relax options: max_iterations {} must be >= 0, tolerance {} >= 0, warm_up {} "
-                                   "finite and >= 0",
-                                   options.max_iterations, options.tolerance, options.warm_up));
+                                   "and bending {} finite and >= 0",
+                                   options.max_iterations, options.tolerance, options.warm_up, options.bending));
   }
   if (mesh.stitches.empty()) throw InvalidInput("relax_stitch_mesh: the stitch mesh has no stitches");
   const int nv = mesh.num_vertices();
@@ -78,6 +124,25 @@ RelaxResult relax_stitch_mesh(const StitchMesh& mesh, const KnitParams& params, 
     poly.weights.push_back(area[static_cast<int>(st.type)]);
     poly.start.push_back(static_cast<int>(poly.vertices.size()));
     shaped = shaped || is_shaping(st.type);
+  }
+
+  if (options.bending > 0) {
+    // Stitches sharing an edge (each undirected edge used by exactly two).
+    std::map<std::pair<int, int>, int> first_user;
+    for (int s = 0; s < mesh.num_stitches(); ++s) {
+      const Stitch& st = mesh.stitches[s];
+      const int n = st.corners();
+      for (int k = 0; k < n; ++k) {
+        const int u = st.v[k], v = st.v[(k + 1) % n];
+        const auto key = std::minmax(u, v);
+        const auto [it, inserted] = first_user.emplace(key, s);
+        if (inserted) continue;
+        const int o = it->second;
+        const double w = options.bending * 0.5 * (area[static_cast<int>(st.type)] +
+                                                  area[static_cast<int>(mesh.stitches[o].type)]);
+        add_hinge(mesh, o, s, u, v, shapes, w, poly);
+      }
+    }
   }
 
   std::vector<Vec3> start = mesh.vertices;

@@ -43,6 +43,15 @@ struct RelaxOptions {
   /// z warm-up amplitude as a fraction of the xy bounding-box diagonal;
   /// 0 switches the warm-up off (relax from the mesh's geometry as it is).
   double warm_up = 0.1;
+  /// Bending stiffness (0 = none, the seed's eq. 1.1 alone). With a weight
+  /// b > 0, every two stitches that share an edge also form a hinge
+  /// polygon whose target is their two ideal shapes laid flat side by side
+  /// (joined along the shared edge), weighted b x their mean ideal area: a
+  /// fold of angle theta at the shared edge then costs about b theta^2 per
+  /// pair, a discrete bending energy. Without it the rest shape of a shaped
+  /// fabric is not unique: quads hinge along whole courses or wales at no
+  /// cost, and long relaxations drift along such folds.
+  double bending = 0.0;
 };
 
 struct RelaxResult {

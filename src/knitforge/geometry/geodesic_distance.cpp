@@ -29,7 +29,7 @@ GeodesicField GeodesicSolver::distance(const GeodesicSource& source, const Geode
     throw InvalidInput(
         fmt::format("geodesic distance: the source has {} vertex sides but the mesh has {} vertices",
                     source.vertex_side.size(), mesh.num_vertices()));
-  detail::GeodesicPropagation prop(*geometry_);
+  detail::GeodesicPropagation prop(*geometry_, false, options.tolerance);
   for (const auto& line : source.polylines) {
     const size_t n = line.size();
     if (n == 0) continue;

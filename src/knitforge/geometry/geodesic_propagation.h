@@ -36,6 +36,13 @@
 /// (GeodesicGeometry::mergeable); merging never changes a distance, it only
 /// saves work. The queue is a radix heap (keys grow monotonically) holding
 /// copies of the windows, so processing a window reads no scattered memory.
+/// Approximate mode (tolerance > 0, GeodesicOptions::tolerance): every new
+/// window is also trimmed exactly against the windows already on its
+/// half-edge (a compact per-half-edge index; pending windows it beats are
+/// trimmed or killed), and touching parallel-family windows are merged into a
+/// fitted family (merge_adjacent()). Tracing (trace_vertex() etc.) through a
+/// fitted window is not reliable (lengths off by up to ~1 mm were measured),
+/// so the path functions use the exact mode only.
 /// Profile and measured speed: docs/geometry.md. Every window remembers its
 /// root (seed or pseudo-source vertex); a shortest path is traced back from
 /// any vertex, boundary point or face point by walking the window's straight
@@ -90,7 +97,8 @@ enum class Origin : char { None, Seed, Window, Vertex, Edge };
 struct Window {
   int h = -1;                    ///< the window lies on edge(h) and propagates into face(h)
   bool line = false;             ///< segment-interior (parallel rays) instead of a point source
-  bool done = false;             ///< propagated (set for windows on mergeable half-edges only)
+  bool done = false;             ///< propagated (set for windows on mergeable half-edges only, or all with a tolerance)
+  bool dead = false;             ///< dropped after creation (approximate mode only: trimmed away by another window)
   char aux = 0;                  ///< seeds: 0 source point p, 1 source point q
   Origin origin = Origin::None;  ///< the root: Seed or Vertex (pseudo-source)
   int origin_id = -1;            ///< seed index or pseudo-source vertex
@@ -112,8 +120,10 @@ struct BoundaryHit {
 class GeodesicPropagation {
  public:
   /// `track_boundary`: also find the boundary point closest to the source
-  /// (for trace_boundary()).
-  explicit GeodesicPropagation(const GeodesicGeometry& g, bool track_boundary = false);
+  /// (for trace_boundary()). `tolerance` (mm, >= 0): 0 is the exact
+  /// propagation; > 0 enables the approximate window trimming described in
+  /// geodesic_distance.h (GeodesicOptions::tolerance).
+  explicit GeodesicPropagation(const GeodesicGeometry& g, bool track_boundary = false, double tolerance = 0.0);
 
   /// Adds the interior of segment p-q in every face that contains both.
   /// \throw InvalidInput when they share no face or a point is invalid (face
@@ -173,6 +183,24 @@ class GeodesicPropagation {
     double sx, sigma;  ///< copies of the window's, to reject most candidates without reading it
   };
   static uint32_t root_code(const Window& w);
+  /// Approximate mode: a compact copy of a live window of a half-edge (its
+  /// interval and distance function), for the window-against-window trimming.
+  struct IndexEntry {
+    double b0, b1;
+    Vec2 s;
+    double sigma;
+    int id;
+    bool line;
+  };
+  /// Approximate mode: trims w against the windows already on its half-edge
+  /// (and trims or kills pending ones that w makes redundant). False when
+  /// nothing of w is left.
+  bool trim_against_index(Window& w);
+  /// The largest x in [lo, hi] with dist_o - dist_w <= 0 on [lo, x]
+  /// (from_lo) or on [x, hi] (the smallest such x, !from_lo); returns lo
+  /// (resp. hi) when the end itself is not dominated.
+  bool merge_adjacent(const Window& w);
+  double dominated_run(const IndexEntry& o, const IndexEntry& w, double lo, double hi, bool from_lo) const;
 
   void seed_face(int f, const Vec3& bp, const Vec3& bq, bool point, const std::vector<Vec2>& cons);
   void check_point(const SurfacePoint& p) const;
@@ -204,6 +232,10 @@ class GeodesicPropagation {
   /// Per half-edge: its pending windows, the candidates for merging
   /// (push_window()); contiguous, so the scan is cheap.
   std::vector<std::vector<PendingRef>> pending_;
+  /// Approximate mode: per half-edge, the windows on it (IndexEntry).
+  std::vector<std::vector<IndexEntry>> index_;
+  double merge_slack_ = 0.0;  ///< approximate mode: largest deviation a merge may introduce (mm)
+  bool approx_ = false;  ///< approximate mode (tolerance > 0)
   std::vector<Seed> seeds_;
   RadixQueue queue_;
   BoundaryHit boundary_;

@@ -1,5 +1,7 @@
 #include "knitforge/design/shortrow/design_short_rows.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "knitforge/convert/map_knittability.h"
@@ -44,7 +46,13 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   Timer t;
 
   stage("geodesic field");
-  const GeodesicField field = geodesic_distance(surface, source);
+  if (!(std::isfinite(options.field_tolerance) && options.field_tolerance >= 0)) {
+    throw InvalidInput(fmt::format("short-row design: field tolerance {} must be finite and >= 0",
+                                   options.field_tolerance));
+  }
+  GeodesicOptions field_options;
+  field_options.tolerance = options.field_tolerance * options.params.stitch_width;
+  const GeodesicField field = geodesic_distance(surface, source, field_options);
   d.field = field.distance;
   d.field_signed = field.is_signed;
   d.field_windows = field.num_windows;

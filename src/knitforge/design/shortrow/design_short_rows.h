@@ -38,6 +38,12 @@ namespace knitforge {
 /// Options of design_short_rows().
 struct ShortRowOptions {
   KnitParams params;  ///< stitch size (mm)
+  /// Accuracy of the governing field, as a fraction of the stitch width:
+  /// GeodesicOptions::tolerance = field_tolerance x stitch_width (measured
+  /// error at most about that tolerance, docs/geometry.md). The default
+  /// 1e-3 is ten times inside the bound (1 % of the stitch width);
+  /// 0 computes the exact polyhedral distance.
+  double field_tolerance = 1e-3;
   WaleOptions wales;
   TessellateWalesOptions tessellation;  ///< lambda, mu (apex diffusion), D unit
   bool evaluate = true;                 ///< run stage 7

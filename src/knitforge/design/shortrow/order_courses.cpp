@@ -1,6 +1,7 @@
 #include "knitforge/design/shortrow/order_courses.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <set>
 
@@ -130,101 +131,218 @@ std::vector<int> greedy_order(const StitchMesh& mesh, const StitchAdjacency& adj
   return order;
 }
 
-/// Support stitches for the transition e (last of course c) -> f (first of
-/// the next course). Appends the new stitches (and vertices) to `mesh` and
-/// returns how many were added (0 when the transition cannot be fixed).
-int support_transition(StitchMesh& mesh, const StitchAdjacency& adj, const Courses& c, int e, int f,
-                       std::vector<int>& new_course) {
-  const int cc = c.of[e], dc = c.of[f];
-  const int dir = c.direction[cc];
-  auto knit = [&](int s) { return s >= 0 && mesh.stitches[s].type == StitchType::Knit; };
-  if (!knit(e) || !knit(f) || c.direction[dc] != -dir) return 0;
-  const int n0 = mesh.num_stitches();
-  const int guard_limit = n0;
-
-  const int top = adj.neighbor(e, Side::Top);
-  if (top >= 0 && c.of[top] == dc && top != f) {
-    // Extend c: the stitches of d from the one above e back to f, all open below.
-    std::vector<int> run;  // from the one next to top (towards f) to f
-    int u = top;
-    for (int guard = 0; u != f; ++guard) {
-      u = adj.previous_in_course(u);
-      if (u < 0 || guard > guard_limit || !knit(u) || adj.neighbor(u, Side::Bottom) >= 0) return 0;
-      run.push_back(u);
+/// Map-space state for the support stitches: every stitch sits in the cell
+/// (row = position of its course in the order, column = Stitch::wale); the
+/// support stitches of a transition fill free cells of the row of one of the
+/// two courses (seed §3.2.3, Fig. 3.5(b): "a few support stitches as
+/// accessory" in the next course, or under it in the previous one).
+class Supporter {
+ public:
+  Supporter(StitchMesh& mesh, const StitchAdjacency& adj, const std::vector<int>& course_of,
+            const std::vector<int>& position, int num_rows)
+      : mesh_(mesh), course_of_(course_of) {
+    const int n = mesh.num_stitches();
+    int hi = -1;
+    usable_ = true;
+    for (const Stitch& st : mesh.stitches) {
+      if (st.wale < 0) usable_ = false;
+      hi = std::max(hi, st.wale);
     }
+    nb_.assign(n, {-1, -1, -1, -1});
+    row_.assign(n, -1);
+    for (int s = 0; s < n; ++s) {
+      for (int k = 0; k < 4; ++k) nb_[s][k] = adj.neighbor(s, static_cast<Side>(k));
+      row_[s] = position[course_of[s]];
+    }
+    if (!usable_) return;
+    rows_ = num_rows;
+    cols_ = hi + 1;
+    cell_.assign(static_cast<size_t>(rows_) * cols_, -1);
+    through_.assign(cell_.size(), 0);
+    for (int s = 0; s < n && usable_; ++s) {
+      int& c = cell_[index(row_[s], mesh.stitches[s].wale)];
+      if (c >= 0) usable_ = false;  // two stitches in one cell: the wale labels cannot be columns
+      c = s;
+    }
+    for (int s = 0; s < n && usable_; ++s) {
+      const int k = mesh.stitches[s].wale;
+      const int top = nb_[s][static_cast<int>(Side::Top)];
+      if (top >= 0) {
+        if (mesh.stitches[top].wale != k || row_[top] <= row_[s]) usable_ = false;
+        for (int r = row_[s] + 1; usable_ && r < row_[top]; ++r) through_[index(r, k)] = 1;
+      }
+      const int right = nb_[s][static_cast<int>(Side::Right)];
+      if (right >= 0) {
+        if (mesh.stitches[right].wale <= k) usable_ = false;
+        for (int c = k + 1; usable_ && c < mesh.stitches[right].wale; ++c) through_[index(row_[s], c)] = 1;
+      }
+    }
+  }
+
+  bool usable() const { return usable_; }
+
+  /// Support stitches that make the last stitch e of course c (knitted in
+  /// direction dir) continue into the first stitch f of the next course d.
+  /// Returns the number added (0 when no valid support exists).
+  int support(int e, int f, int dir, std::vector<int>& new_course) {
+    if (!usable_) return 0;
+    const Stitch& se = mesh_.stitches[e];
+    const Stitch& sf = mesh_.stitches[f];
+    if (sf.direction != -dir || row_[f] != row_[e] + 1) return 0;
+    const int ke = se.wale, kf = sf.wale;
+    if (ke == kf) return 0;
+    // d reaches beyond e on the side where c ends: c is continued under d
+    // (new stitches in c's row, from e outwards to below f); otherwise d is
+    // started above e (new stitches in d's row, from f outwards to above e).
+    const bool extend_c = dir > 0 ? kf > ke : kf < ke;
+    const int anchor = extend_c ? e : f;
+    const int row = extend_c ? row_[e] : row_[f];
+    const int k0 = mesh_.stitches[anchor].wale;
+    const int k1 = extend_c ? kf : ke;  // column of the last new stitch
+    const int sigma = k1 > k0 ? 1 : -1;  // chain direction in the map
+    const int cc = course_of_[anchor];
+    const int8_t course_dir = mesh_.stitches[anchor].direction;
+    const Side out_side = sigma > 0 ? Side::Right : Side::Left;
+    const Side in_side = sigma > 0 ? Side::Left : Side::Right;
+    if (side_vertices(anchor, out_side).first < 0 || nb_[anchor][static_cast<int>(out_side)] >= 0) return 0;
+
+    const Vec3 wvec = across(anchor, Side::Left, Side::Right);
+    const Vec3 hvec = across(anchor, Side::Bottom, Side::Top);
     std::vector<Stitch> added;
-    std::vector<Vec3> verts;
-    Stitch prev = mesh.stitches[e];
-    int next_vertex = mesh.num_vertices();
-    for (int s : run) {
-      const Stitch& us = mesh.stitches[s];
+    std::vector<Vec3> new_positions;
+    std::vector<std::array<int, 4>> added_nb;
+    const int n0 = mesh_.num_stitches();
+    const int v0 = mesh_.num_vertices();
+    auto position = [&](int v) -> const Vec3& { return v < v0 ? mesh_.vertices[v] : new_positions[v - v0]; };
+    int prev = anchor;
+    for (int k = k0 + sigma;; k += sigma) {
+      if (k < 0 || k >= cols_ || cell_[index(row, k)] >= 0 || through_[index(row, k)]) return 0;
+      std::array<int, 4> corner = {-1, -1, -1, -1};  // BL BR TR TL
+      std::array<int, 4> w_nb = {-1, -1, -1, -1};
+      auto assign = [&](int c, int v) {
+        if (corner[c] >= 0 && corner[c] != v) return false;
+        corner[c] = v;
+        return true;
+      };
+      // Horizontal: the previous stitch of the chain.
+      {
+        const auto [a, b] = prev < n0 ? side_vertices(prev, out_side) : new_side(added[prev - n0], out_side);
+        if (a < 0) return 0;
+        const bool ok = sigma > 0 ? assign(BL, a) && assign(TL, b) : assign(TR, a) && assign(BR, b);
+        if (!ok) return 0;
+        w_nb[static_cast<int>(in_side)] = prev;
+      }
+      // Vertical: whatever the map puts right below and right above.
+      const int below = row > 0 ? cell_[index(row - 1, k)] : -1;
+      const int above = row + 1 < rows_ ? cell_[index(row + 1, k)] : -1;
+      if (below >= 0) {
+        const auto [a, b] = side_vertices(below, Side::Top);
+        if (a < 0 || nb_[below][static_cast<int>(Side::Top)] >= 0) return 0;
+        if (!assign(BR, a) || !assign(BL, b)) return 0;
+        w_nb[static_cast<int>(Side::Bottom)] = below;
+      }
+      if (above >= 0) {
+        const auto [a, b] = side_vertices(above, Side::Bottom);
+        if (a < 0 || nb_[above][static_cast<int>(Side::Bottom)] >= 0) return 0;
+        if (!assign(TL, a) || !assign(TR, b)) return 0;
+        w_nb[static_cast<int>(Side::Top)] = above;
+      }
+      const bool last = k == k1;
+      if (last) {
+        // The transition itself: e below the new first stitch of d, or f
+        // above the new last stitch of c.
+        if (extend_c ? above != f : below != e) return 0;
+      }
+      // New corners: translated copies (a parallelogram on its neighbours).
+      std::array<Vec3, 4> p;
+      std::array<char, 4> known{};
+      for (int c = 0; c < 4; ++c) {
+        if (corner[c] >= 0) {
+          p[c] = position(corner[c]);
+          known[c] = 1;
+        }
+      }
+      for (int pass = 0; pass < 3; ++pass) {
+        const std::array<std::pair<int, int>, 4> horiz = {{{BL, BR}, {TL, TR}, {BR, BL}, {TR, TL}}};
+        for (const auto& [from, to] : horiz) {
+          if (known[from] && !known[to]) {
+            p[to] = p[from] + ((to == BR || to == TR) ? wvec : Vec3(-wvec));
+            known[to] = 1;
+          }
+        }
+        const std::array<std::pair<int, int>, 4> vert = {{{BL, TL}, {BR, TR}, {TL, BL}, {TR, BR}}};
+        for (const auto& [from, to] : vert) {
+          if (known[from] && !known[to]) {
+            p[to] = p[from] + ((to == TL || to == TR) ? hvec : Vec3(-hvec));
+            known[to] = 1;
+          }
+        }
+      }
+      for (int c = 0; c < 4; ++c) {
+        if (corner[c] < 0) {
+          corner[c] = v0 + static_cast<int>(new_positions.size());
+          new_positions.push_back(p[c]);
+        }
+      }
       Stitch w;
       w.type = StitchType::Knit;
-      w.direction = static_cast<int8_t>(dir);
-      w.yarn = prev.yarn;
-      w.wale = us.wale;  // the column of the stitch it supports
-      if (dir > 0) {
-        if (prev.v[TR] != us.v[BL]) return 0;
-        const Vec3 p = mesh.vertices[prev.v[BR]] + (mesh.vertices[us.v[BR]] - mesh.vertices[us.v[BL]]);
-        verts.push_back(p);
-        w.v = {prev.v[BR], next_vertex++, us.v[BR], prev.v[TR]};
-      } else {
-        if (prev.v[TL] != us.v[BR]) return 0;
-        const Vec3 p = mesh.vertices[prev.v[BL]] + (mesh.vertices[us.v[BL]] - mesh.vertices[us.v[BR]]);
-        verts.push_back(p);
-        w.v = {next_vertex++, prev.v[BL], prev.v[TL], us.v[BL]};
-      }
+      w.direction = course_dir;
+      w.yarn = mesh_.stitches[anchor].yarn;
+      w.wale = k;
+      w.v = {corner[0], corner[1], corner[2], corner[3]};
       added.push_back(w);
-      prev = w;
+      added_nb.push_back(w_nb);
+      prev = n0 + static_cast<int>(added.size()) - 1;
+      if (last) break;
     }
-    mesh.vertices.insert(mesh.vertices.end(), verts.begin(), verts.end());
-    mesh.stitches.insert(mesh.stitches.end(), added.begin(), added.end());
-    new_course.insert(new_course.end(), added.size(), cc);
+    // Commit.
+    mesh_.vertices.insert(mesh_.vertices.end(), new_positions.begin(), new_positions.end());
+    for (size_t j = 0; j < added.size(); ++j) {
+      const int id = n0 + static_cast<int>(j);
+      mesh_.stitches.push_back(added[j]);
+      nb_.push_back(added_nb[j]);
+      row_.push_back(row);
+      new_course.push_back(cc);
+      cell_[index(row, added[j].wale)] = id;
+      for (int k = 0; k < 4; ++k) {
+        const int other = added_nb[j][k];
+        if (other >= 0 && other < n0) nb_[other][static_cast<int>(opposite_side(static_cast<Side>(k)))] = id;
+      }
+    }
     return static_cast<int>(added.size());
   }
 
-  const int below = adj.neighbor(f, Side::Bottom);
-  if (top < 0 && below >= 0 && c.of[below] == cc && below != e) {
-    // Extend d: the stitches of c after the one below f up to e, all open above.
-    std::vector<int> run;
-    int v = below;
-    for (int guard = 0; v != e; ++guard) {
-      v = adj.next_in_course(v);
-      if (v < 0 || guard > guard_limit || !knit(v) || adj.neighbor(v, Side::Top) >= 0) return 0;
-      run.push_back(v);
-    }
-    std::vector<Stitch> added;
-    std::vector<Vec3> verts;
-    Stitch prev = mesh.stitches[f];
-    int next_vertex = mesh.num_vertices();
-    for (int s : run) {
-      const Stitch& vs = mesh.stitches[s];
-      Stitch w;
-      w.type = StitchType::Knit;
-      w.direction = static_cast<int8_t>(-dir);
-      w.yarn = prev.yarn;
-      w.wale = vs.wale;
-      if (dir > 0) {  // e to the right: w right of prev
-        if (prev.v[BR] != vs.v[TL]) return 0;
-        const Vec3 p = mesh.vertices[prev.v[TR]] + (mesh.vertices[vs.v[TR]] - mesh.vertices[vs.v[TL]]);
-        verts.push_back(p);
-        w.v = {vs.v[TL], vs.v[TR], next_vertex++, prev.v[TR]};
-      } else {  // w left of prev
-        if (prev.v[BL] != vs.v[TR]) return 0;
-        const Vec3 p = mesh.vertices[prev.v[TL]] + (mesh.vertices[vs.v[TL]] - mesh.vertices[vs.v[TR]]);
-        verts.push_back(p);
-        w.v = {vs.v[TL], vs.v[TR], prev.v[TL], next_vertex++};
-      }
-      added.push_back(w);
-      prev = w;
-    }
-    mesh.vertices.insert(mesh.vertices.end(), verts.begin(), verts.end());
-    mesh.stitches.insert(mesh.stitches.end(), added.begin(), added.end());
-    new_course.insert(new_course.end(), added.size(), dc);
-    return static_cast<int>(added.size());
+ private:
+  size_t index(int r, int c) const { return static_cast<size_t>(r) * cols_ + c; }
+
+  /// The two vertices of side `side` of stitch s in counter-clockwise order,
+  /// {-1, -1} when its type has no such side.
+  std::pair<int, int> side_vertices(int s, Side side) const { return new_side(mesh_.stitches[s], side); }
+  static std::pair<int, int> new_side(const Stitch& st, Side side) {
+    const int k = edge_of_side(st.type, side);
+    if (k < 0) return {-1, -1};
+    return {st.v[k], st.v[(k + 1) % st.corners()]};
   }
-  return 0;
-}
+
+  /// From the middle of side `from` (or the apex when missing) to the middle of side `to`.
+  Vec3 across(int s, Side from, Side to) const {
+    auto mid = [&](Side side) {
+      const auto [a, b] = side_vertices(s, side);
+      if (a < 0) return Vec3(mesh_.vertices[mesh_.stitches[s].v[apex_corner(mesh_.stitches[s].type)]]);
+      return Vec3(0.5 * (mesh_.vertices[a] + mesh_.vertices[b]));
+    };
+    return mid(to) - mid(from);
+  }
+
+  StitchMesh& mesh_;
+  const std::vector<int>& course_of_;
+  std::vector<std::array<int, 4>> nb_;
+  std::vector<int> row_;
+  int rows_ = 0, cols_ = 0;
+  std::vector<int> cell_;
+  std::vector<char> through_;
+  bool usable_ = false;
+};
 
 }  // namespace
 
@@ -237,10 +355,13 @@ CourseOrder order_courses(StitchMesh& mesh) {
     const Courses c = flood_courses(mesh, adj);
     order = greedy_order(mesh, adj, c, out.cyclic_edges);
     course_of = c.of;
+    std::vector<int> position(c.count);
+    for (size_t i = 0; i < order.size(); ++i) position[order[i]] = static_cast<int>(i);
+    Supporter supporter(mesh, adj, c.of, position, c.count);
     for (size_t i = 0; i + 1 < order.size(); ++i) {
       const int e = c.last[order[i]], f = c.first[order[i + 1]];
       if (adj.next_stitch(e) == f) continue;
-      const int added = support_transition(mesh, adj, c, e, f, course_of);
+      const int added = supporter.support(e, f, c.direction[order[i]], course_of);
       if (added > 0) {
         out.support_stitches += added;
         ++out.fixed_breaks;

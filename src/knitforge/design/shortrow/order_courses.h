@@ -17,20 +17,25 @@
 /// course is the source course with the smallest stitch index among those
 /// knitted left to right (or among all when none is).
 ///
-/// Support stitches (§3.2.4 conditions): where the last stitch e of course c
-/// is not followed by the first stitch f of the next course d at the
-/// boundary, quads are added, never forming a tree in the course graph:
-///  - "extend c": e's Top neighbour lies in d but is not f; the stitches of
-///    d from f up to it all have an open Bottom side (no other course is
-///    connected to d there). c is continued under them, so that its new last
-///    stitch lies below f.
-///  - "extend d": e has no Top neighbour; f's Bottom neighbour lies in c and
-///    the stitches of c from it to e all have an open Top side (c is
-///    connected to no other course there). d is started above them, so that
-///    its new first stitch lies above e.
-/// New corners are translated copies (a support stitch is a parallelogram
-/// on the stitch it leans on). Breaks that neither rule can fix are left and
-/// reported.
+/// Support stitches (§3.2.3 Fig. 3.5(b), §3.2.4 conditions), in map space:
+/// every stitch sits in the cell (row = position of its course in the order,
+/// column = Stitch::wale). Where the last stitch e of course c is not
+/// followed by the first stitch f of the next course d, quads are added over
+/// as many wales as needed, never forming a tree in the course graph:
+///  - d reaches beyond e on the side where c ends: c is continued in its row
+///    from e to the cell below f (under d's stitches there, whose Bottom
+///    sides must be open);
+///  - otherwise d is started in its row from the cell above e (whose Top
+///    side must be open) up to f.
+/// Every new cell must be free and not crossed by a wale or course that
+/// passes it (a collapsed cell), every stitch right below or above it in the
+/// map must have an open facing side (it becomes its neighbour), and corners
+/// shared with neighbours must agree (no two existing vertices are merged);
+/// otherwise the transition is left and reported. New corners are translated
+/// copies (a support stitch is a parallelogram on the stitch it leans on).
+/// This subsumes the one-stitch "extend c / extend d" rules and also bridges
+/// transitions where neither course touches the other (a widening over
+/// several wales).
 ///
 /// Output: Stitch::course of every stitch = the position of its course in
 /// the knitting order (0 = knitted first); stitch_mesh_to_map() then
