@@ -97,8 +97,7 @@ void write_obj(const std::string& path, const TriMesh& mesh, const MeshWriteOpti
                  mesh.num_vertices(), mesh.num_faces());
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3& p = mesh.vertices[v];
-    fmt::format_to(std::back_inserter(buf), "v {} {} {}", format_double(p.x()), format_double(p.y()),
-                   format_double(p.z()));
+    fmt::format_to(std::back_inserter(buf), "v {} {} {}", p.x(), p.y(), p.z());
     if (!options.vertex_colours.empty()) {
       const Rgb c = options.vertex_colours[v];
       fmt::format_to(std::back_inserter(buf), " {} {} {}", format_double(c.r / 255.0),

@@ -138,7 +138,7 @@ void write_off(const std::string& path, const TriMesh& mesh, const MeshWriteOpti
   fmt::format_to(out, "{}\n{} {} 0\n", vcol ? "COFF" : "OFF", mesh.num_vertices(), mesh.num_faces());
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3& p = mesh.vertices[v];
-    fmt::format_to(out, "{} {} {}", format_double(p.x()), format_double(p.y()), format_double(p.z()));
+    fmt::format_to(out, "{} {} {}", p.x(), p.y(), p.z());
     if (vcol) {
       const Rgb c = options.vertex_colours[v];
       fmt::format_to(out, " {} {} {} 255", c.r, c.g, c.b);

@@ -30,8 +30,7 @@ void write_objects(const std::string& path, const std::vector<const std::vector<
       if (!pl[k].allFinite()) {
         throw InvalidInput(fmt::format("{}: point {} of polyline '{}' is not finite", path, k, names[i]));
       }
-      fmt::format_to(out, "v {} {} {}\n", format_double(pl[k].x()), format_double(pl[k].y()),
-                     format_double(pl[k].z()));
+      fmt::format_to(out, "v {} {} {}\n", pl[k].x(), pl[k].y(), pl[k].z());  // shortest round trip
     }
     if (pl.size() == 1) {
       fmt::format_to(out, "p {}\n", base + 1);
