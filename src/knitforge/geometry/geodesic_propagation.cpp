@@ -338,6 +338,7 @@ bool GeodesicPropagation::prepare(Window& w) const {
 // pieces a window is split into at every vertex would stay separate forever
 // and their number per edge would grow with the distance from the source.
 void GeodesicPropagation::push_window(const Window& w0) {
+  if (blocked_ && (*blocked_)[w0.h]) return;
   Window w = w0;
   if (approx_) {
     if (!trim_against_index(w) || merge_adjacent(w)) return;
@@ -562,6 +563,7 @@ void GeodesicPropagation::make_child(const Window& parent, int wi, int k, double
   // Child frame: origin ck1, axis towards ck; position along the child edge = (1 - t) le.
   Window c;
   c.h = g_.he.opposite(gk);
+  if (c.h >= 0 && blocked_ && (*blocked_)[c.h]) return;
   c.line = parent.line;
   c.origin = parent.origin;  // the root (seed or pseudo-source vertex)
   c.origin_id = parent.origin_id;
@@ -694,8 +696,8 @@ void GeodesicPropagation::emit_vertex(int v) {
     const int h = g_.out_he[i];  // v = corner 0 of the frame of h
     // Edge relaxation to the two neighbours in this face.
     const int b = g_.he.to(h), c = g_.he.to(g_.he.next(h));
-    update_vertex(b, dv + g_.len[h], Origin::Edge, v);
-    update_vertex(c, dv + g_.len[g_.he.prev(h)], Origin::Edge, v);
+    if (!blocked_ || !(*blocked_)[h]) update_vertex(b, dv + g_.len[h], Origin::Edge, v);
+    if (!blocked_ || !(*blocked_)[g_.he.prev(h)]) update_vertex(c, dv + g_.len[g_.he.prev(h)], Origin::Edge, v);
     // A point window from v on the opposite edge (B -> C, child k = 1),
     // restricted to the shadow directions.
     const int gk = g_.he.next(h);
@@ -718,6 +720,7 @@ void GeodesicPropagation::emit_vertex(int v) {
       };
       Window w;
       w.h = g_.he.opposite(gk);
+      if (w.h >= 0 && blocked_ && (*blocked_)[w.h]) continue;
       w.origin = Origin::Vertex;
       w.origin_id = v;
       w.s = fr.point(Vec2(0.0, 0.0));

@@ -134,6 +134,14 @@ class GeodesicPropagation {
   /// restricted to the directions where p is the closest source point.
   void add_point(const SurfacePoint& p, const std::vector<const SurfacePoint*>& neighbours = {});
 
+  /// Side-restricted propagation (geodesic_distance.h, "two sides"): no
+  /// window is kept on a half-edge h with (*blocked)[h] != 0 and no vertex
+  /// distance is relaxed along such a half-edge. `blocked` has one entry per
+  /// half-edge and must outlive run(); nullptr (the default) blocks nothing.
+  /// The geometry is only read, so two propagations of one GeodesicGeometry
+  /// (each with its own mask) may run concurrently in two threads.
+  void set_blocked(const std::vector<char>* blocked) { blocked_ = blocked; }
+
   /// Propagates until every window is processed.
   void run();
 
@@ -236,6 +244,7 @@ class GeodesicPropagation {
   std::vector<std::vector<IndexEntry>> index_;
   double merge_slack_ = 0.0;  ///< approximate mode: largest deviation a merge may introduce (mm)
   bool approx_ = false;  ///< approximate mode (tolerance > 0)
+  const std::vector<char>* blocked_ = nullptr;  ///< per half-edge: drop windows there (set_blocked())
   std::vector<Seed> seeds_;
   RadixQueue queue_;
   BoundaryHit boundary_;
