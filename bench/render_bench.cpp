@@ -1,8 +1,9 @@
-// Benchmark: yarn model -> tube meshes -> .glb for a ~100k-stitch map
+// Benchmark: yarn model -> tubes -> .glb for a ~100k-stitch map
 // (330 x 330 random map with a few short rows and short columns; goal:
-// < 2 s for tubes + file, docs/render.md) at a preview tube detail, the
-// default detail on 10k stitches, and the raster preview of the 100k
-// preview tubes.
+// < 2 s for tubes + file, docs/render.md), by the direct path
+// write_yarn_glb() at the preview and the default tube detail, and by the
+// general path (yarn_tubes() RenderMeshes, then write_glb()); the tubes
+// alone, and the raster preview of the 100k preview tubes.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -56,10 +57,15 @@ TubeOptions preview_detail() {
   return t;
 }
 
-void run_glb(benchmark::State& state, const YarnModel& yarn, int stitches, const TubeOptions& tube) {
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("knitforge_render_bench_" + std::to_string(::getpid()) + ".glb"))
-                               .string();
+std::string temp_glb() {
+  return (std::filesystem::temp_directory_path() /
+          ("knitforge_render_bench_" + std::to_string(::getpid()) + ".glb"))
+      .string();
+}
+
+// The general path: RenderMeshes, then write_glb.
+void run_meshes_glb(benchmark::State& state, const YarnModel& yarn, int stitches, const TubeOptions& tube) {
+  const std::string path = temp_glb();
   size_t vertices = 0;
   for (auto _ : state) {
     const std::vector<RenderMesh> tubes = yarn_tubes(yarn, KnitParams{}, tube);
@@ -73,17 +79,42 @@ void run_glb(benchmark::State& state, const YarnModel& yarn, int stitches, const
   std::filesystem::remove(path);
 }
 
+// The direct path: write_yarn_glb.
+void run_direct_glb(benchmark::State& state, const YarnModel& yarn, int stitches, const TubeOptions& tube) {
+  const std::string path = temp_glb();
+  for (auto _ : state) write_yarn_glb(path, yarn, KnitParams{}, tube);
+  state.counters["stitches"] = stitches;
+  state.counters["yarns"] = static_cast<double>(yarn.yarns.size());
+  state.counters["glb_MB"] = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
+  std::filesystem::remove(path);
+}
+
 void BM_YarnToGlb100kPreview(benchmark::State& state) {
   int n = 0;
   const YarnModel& yarn = yarn_100k(&n);
-  run_glb(state, yarn, n, preview_detail());
+  run_direct_glb(state, yarn, n, preview_detail());
 }
-// The default detail is about 460 vertices per stitch (46M for 100k
-// stitches, a 2.4 GB file), so it is measured on 10k stitches.
+// The default detail (12 vertices per ring every 0.42 mm, capped): about
+// 460 vertices per stitch, a 1.7 GB file for 100k stitches.
+void BM_YarnToGlb100kDefault(benchmark::State& state) {
+  int n = 0;
+  const YarnModel& yarn = yarn_100k(&n);
+  run_direct_glb(state, yarn, n, TubeOptions{});
+}
 void BM_YarnToGlb10kDefault(benchmark::State& state) {
   int n = 0;
   const YarnModel& yarn = yarn_10k(&n);
-  run_glb(state, yarn, n, TubeOptions{});
+  run_direct_glb(state, yarn, n, TubeOptions{});
+}
+void BM_MeshesToGlb100kPreview(benchmark::State& state) {
+  int n = 0;
+  const YarnModel& yarn = yarn_100k(&n);
+  run_meshes_glb(state, yarn, n, preview_detail());
+}
+void BM_MeshesToGlb10kDefault(benchmark::State& state) {
+  int n = 0;
+  const YarnModel& yarn = yarn_10k(&n);
+  run_meshes_glb(state, yarn, n, TubeOptions{});
 }
 
 void BM_YarnTubes100kPreviewOnly(benchmark::State& state) {
@@ -109,9 +140,12 @@ void BM_RasterPreview100k(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_YarnToGlb100kPreview)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_YarnToGlb100kPreview)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_YarnToGlb10kDefault)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_YarnToGlb100kDefault)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_MeshesToGlb100kPreview)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_MeshesToGlb10kDefault)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_YarnTubes100kPreviewOnly)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_RasterPreview100k)->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK(BM_YarnToGlb10kDefault)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 BENCHMARK_MAIN();

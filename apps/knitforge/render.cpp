@@ -179,6 +179,7 @@ void add_render_command(CLI::App& app, Action& action) {
 
       // The scene.
       std::vector<RenderMesh> scene;
+      bool written = false;  // the .glb of yarn tubes is streamed while the scene is made
       const std::string in_ext = extension(o->input);
       const bool stitch_input = in_ext == ".csv" || (in_ext == ".ply" && is_stitch_mesh_ply(o->input));
       if (stitch_input) {
@@ -205,11 +206,18 @@ void add_render_command(CLI::App& app, Action& action) {
             colours.push_back(
                 to_render(y.id <= 0 ? stitch_type_colour(StitchType::Knit) : yarn_colour(y.id)));
           }
-          scene = yarn_tubes(yarn, params, tube, colours);
           size_t nv = 0, nf = 0;
-          for (const RenderMesh& m : scene) {
-            nv += m.mesh.vertices.size();
-            nf += m.mesh.faces.size();
+          if (ext == ".glb") {  // streamed straight to the file, no meshes in memory
+            const YarnGlbSummary s = write_yarn_glb(o->output, yarn, params, tube, colours);
+            written = true;
+            nv = s.vertices;
+            nf = s.triangles;
+          } else {
+            scene = yarn_tubes(yarn, params, tube, colours);
+            for (const RenderMesh& m : scene) {
+              nv += m.mesh.vertices.size();
+              nf += m.mesh.faces.size();
+            }
           }
           note(fmt::format("{} yarn(s) for {} stitches: {} tube vertices, {} triangles", yarn.yarns.size(),
                            mesh.num_stitches(), nv, nf));
@@ -230,7 +238,7 @@ void add_render_command(CLI::App& app, Action& action) {
       }
 
       if (ext == ".glb") {
-        write_glb(o->output, scene);
+        if (!written) write_glb(o->output, scene);
       } else if (ext == ".obj") {
         write_obj_meshes(o->output, scene);
       } else {

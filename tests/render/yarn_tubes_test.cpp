@@ -142,8 +142,8 @@ TEST(YarnTube, StraightPrismHasExactVolumeAndOutwardOrientation) {
   EXPECT_TRUE(closed_and_oriented(t.mesh));
   EXPECT_NEAR(volume(t.mesh), len * 0.5 * k * r * r * std::sin(2 * kPi / k), 1e-12);
   ASSERT_EQ(t.normals.size(), t.mesh.vertices.size());
-  ASSERT_EQ(t.vertex_colours.size(), t.mesh.vertices.size());
-  EXPECT_EQ(t.vertex_colours[5], (RenderColour{1, 2, 3}));
+  EXPECT_TRUE(t.vertex_colours.empty());
+  EXPECT_EQ(t.colour, (RenderColour{1, 2, 3}));
   for (int v = 0; v < 2 * k; ++v) {  // side normals point away from the axis
     Vec3 radial = t.mesh.vertices[v];
     radial.x() = 0.0;
@@ -243,8 +243,9 @@ TEST(YarnTubes, OneMeshPerYarnWithItsColour) {
   ASSERT_EQ(tubes.size(), 3u);
   EXPECT_EQ(tubes[0].name, "yarn 0");
   EXPECT_EQ(tubes[1].name, "yarn 3");
-  EXPECT_EQ(tubes[1].vertex_colours.front(), colours[1]);
-  EXPECT_EQ(tubes[0].vertex_colours.front(), colours[0]);
+  EXPECT_EQ(tubes[1].colour, colours[1]);
+  EXPECT_EQ(tubes[0].colour, colours[0]);
+  EXPECT_TRUE(tubes[0].vertex_colours.empty());  // one colour per yarn: RenderMesh::colour
   EXPECT_TRUE(tubes[2].mesh.faces.empty());
   // default radius = 0.12 * stitch width
   const double r = 0.12 * KnitParams{}.stitch_width;
@@ -252,6 +253,75 @@ TEST(YarnTubes, OneMeshPerYarnWithItsColour) {
   for (const Vec3& p : tubes[1].mesh.vertices) max_dist = std::max(max_dist, std::abs(p.y() - 5.0));
   EXPECT_NEAR(max_dist, r, 1e-12);
   EXPECT_TRUE(closed_and_oriented(tubes[0].mesh));
+}
+
+// The ring-by-ring float32 output (used by write_yarn_glb) is yarn_tube()'s
+// geometry rounded to float, and the side indices of any run of rings are
+// yarn_tube()'s faces shifted to that run.
+TEST(TubeRings, FloatVerticesAndIndicesMatchTheMesh) {
+  TubeOptions o;
+  o.vertices_per_ply = 2;
+  o.capped = false;
+  o.ring_spacing = 0.2;
+  const std::vector<Vec3> pts = helix(30, 2.0, 1.5, 2.0);
+  const RenderMesh t = yarn_tube(pts, o, 0.35, {});
+  const TubeSection sec = tube_section(o, 0.35);
+  const std::vector<TubeRing> rings = tube_rings(pts, o, 0.35);
+  const size_t K = static_cast<size_t>(sec.size());
+  ASSERT_EQ(K, 12u);
+  ASSERT_EQ(rings.size() * K, t.mesh.vertices.size());
+  std::vector<float> pos(3 * K * rings.size()), nrm(pos.size());
+  tube_ring_vertices(sec, rings, pos, nrm);
+  for (size_t v = 0; v < t.mesh.vertices.size(); ++v) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(pos[3 * v + static_cast<size_t>(c)], static_cast<float>(t.mesh.vertices[v][c])) << v;
+      EXPECT_EQ(nrm[3 * v + static_cast<size_t>(c)], static_cast<float>(t.normals[v][c])) << v;
+    }
+    EXPECT_NEAR(t.normals[v].norm(), 1.0, 1e-12);
+  }
+  for (const TubeRing& r : rings) {  // orthonormal axes, u x w along the curve
+    EXPECT_NEAR(r.u.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(r.w.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(r.u.dot(r.w), 0.0, 1e-12);
+    EXPECT_GE(r.shift, 0);
+    EXPECT_LT(r.shift, static_cast<int>(K));
+  }
+  // a run of rings [3, 9] written with base 100 into uint16 indices
+  const std::span<const TubeRing> run = std::span<const TubeRing>(rings).subspan(3, 7);
+  std::vector<uint16_t> idx(6 * K * 6);
+  tube_side_indices(run, static_cast<int>(K), 100, idx);
+  for (size_t f = 0; f < idx.size() / 3; ++f) {
+    for (size_t c = 0; c < 3; ++c) {
+      const int global = t.mesh.faces[2 * K * 3 + f][c];
+      EXPECT_EQ(static_cast<int>(idx[3 * f + c]) - 100 + static_cast<int>(3 * K), global) << f;
+    }
+  }
+  std::vector<uint16_t> wrong(5);
+  EXPECT_THROW(tube_side_indices(run, static_cast<int>(K), 0, wrong), InvalidInput);
+  std::vector<uint16_t> small(6 * K * 6);
+  EXPECT_THROW(tube_side_indices(run, static_cast<int>(K), 65500, small), InvalidInput);  // overflows uint16
+}
+
+// Far along a long yarn (arc length 10^5 mm) the twist phase is still exact:
+// the u axis of a straight tube turns by twist * distance between rings.
+TEST(TubeRings, TwistPhaseStaysExactOnLongYarns) {
+  TubeOptions o;
+  o.twist_per_mm = 0.15;
+  o.ring_spacing = 0.5;
+  const double far = 1e5;
+  const std::vector<Vec3> line = {{0, 0, 0}, {far, 0, 0}, {far + 2.0, 0, 0}};
+  // three points on a line: smoothing keeps it straight
+  const std::vector<TubeRing> rings = tube_rings(line, o, 0.3);
+  ASSERT_GT(rings.size(), 3u);
+  const TubeRing& a = rings[rings.size() - 2];
+  const TubeRing& b = rings.back();
+  const double ds = b.centre.x() - a.centre.x();
+  const double angle = std::atan2(a.u.cross(b.u).dot(Vec3::UnitX()), a.u.dot(b.u));
+  EXPECT_NEAR(angle, 2.0 * kPi * o.twist_per_mm * ds, 1e-6);
+  const double turns = o.twist_per_mm * b.centre.x();
+  const double expect = 2.0 * kPi * (turns - std::floor(turns));  // phase from ring 0's u
+  const double got = std::atan2(rings[0].u.cross(b.u).dot(Vec3::UnitX()), rings[0].u.dot(b.u));
+  EXPECT_NEAR(std::remainder(got - expect, 2.0 * kPi), 0.0, 1e-6);
 }
 
 TEST(YarnTube, RejectsBadOptions) {

@@ -21,7 +21,7 @@ namespace {
 constexpr uint32_t kMagic = 0x46546C67;      // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
-constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedInt = 5125;
+constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 // A mesh ready to stream: either the input mesh or its face-colour expansion.
@@ -304,6 +304,385 @@ void write_glb(const std::string& path, std::span<const RenderMesh> meshes) {
         out.flush();
       },
       true);
+}
+
+}  // namespace knitforge
+
+namespace knitforge {
+
+namespace {
+
+// One glTF primitive of a yarn's tube: `rings` consecutive rings of the side
+// (K vertices each; 0 = the caps primitive), laid out in the BIN chunk from
+// `offset` as positions (12 nv bytes), normals (12 nv) and indices
+// (padded to 4 bytes).
+struct TubePrimitive {
+  size_t rings = 0, nv = 0, n_indices = 0;
+  bool short_indices = true;
+  uint64_t offset = 0;
+  size_t idx_bytes = 0;
+  std::array<float, 3> lo{}, hi{};
+  size_t bytes() const { return 24 * nv + idx_bytes; }
+};
+
+struct YarnLayout {
+  std::string name;
+  RenderColour colour{};
+  std::vector<Vec3> curve;  // the smoothed centre line, one ring per sample
+  size_t step = 0;          // side primitive c holds rings [c step, c step + step]
+  std::vector<TubePrimitive> prims;
+};
+
+constexpr size_t pad4(size_t n) { return (n + 3) & ~size_t{3}; }
+
+template <class T>
+void to_little_endian(char* p, size_t n) {
+  if constexpr (std::endian::native == std::endian::big) {
+    for (size_t i = 0; i < n; ++i, p += sizeof(T)) std::reverse(p, p + sizeof(T));
+  } else {
+    (void)p;
+    (void)n;
+  }
+}
+
+void put_u32(std::string& s, uint32_t v) {
+  for (int k = 0; k < 4; ++k) s.push_back(static_cast<char>((v >> (8 * k)) & 0xffu));
+}
+
+// Primitives of a tube of R >= 2 rings of K vertices, from BIN offset `off`
+// on (advanced past them).
+std::vector<TubePrimitive> tube_layout(size_t R, size_t K, bool capped, uint64_t& off, size_t& step) {
+  std::vector<TubePrimitive> prims;
+  const bool short_indices = K <= 32767;
+  // consecutive side primitives share a ring; at most 65535 vertices each
+  step = short_indices ? 65535 / K - 1 : R - 1;
+  auto add = [&](size_t rings, size_t nv, size_t n_indices, bool shorts) {
+    TubePrimitive& p = prims.emplace_back();
+    p.rings = rings;
+    p.nv = nv;
+    p.n_indices = n_indices;
+    p.short_indices = shorts;
+    p.offset = off;
+    p.idx_bytes = pad4((shorts ? 2 : 4) * n_indices);
+    p.lo.fill(std::numeric_limits<float>::infinity());
+    p.hi.fill(-std::numeric_limits<float>::infinity());
+    off += p.bytes();
+  };
+  for (size_t r0 = 0; r0 + 1 < R; r0 += step) {
+    const size_t rings = std::min(step, R - 1 - r0) + 1;
+    add(rings, K * rings, 6 * K * (rings - 1), short_indices);
+  }
+  if (capped) add(0, 2 * (K + 1), 6 * K, 2 * (K + 1) <= 65535);
+  return prims;
+}
+
+// One primitive's data while it is made (typed arrays, written as bytes).
+struct PrimitiveData {
+  std::vector<float> pos, nrm;
+  std::vector<uint16_t> idx16;
+  std::vector<uint32_t> idx32;
+  void reset(const TubePrimitive& p) {
+    pos.resize(3 * p.nv);
+    nrm.resize(3 * p.nv);
+    idx16.clear();
+    idx32.clear();
+    if (p.short_indices)
+      idx16.reserve(p.n_indices);
+    else
+      idx32.reserve(p.n_indices);
+  }
+};
+
+template <class T>
+void write_le(std::ostream& os, std::vector<T>& v) {
+  char* bytes = reinterpret_cast<char*>(v.data());  // char may alias any object
+  to_little_endian<T>(bytes, v.size());
+  os.write(bytes, static_cast<std::streamsize>(sizeof(T) * v.size()));
+}
+
+// Writes a finished primitive in its BIN layout: positions, normals,
+// indices, zero padding.
+void write_primitive(std::ostream& os, const TubePrimitive& p, PrimitiveData& d) {
+  write_le(os, d.pos);
+  write_le(os, d.nrm);
+  size_t idx_bytes = 0;
+  if (p.short_indices) {
+    idx_bytes = 2 * d.idx16.size();
+    write_le(os, d.idx16);
+  } else {
+    idx_bytes = 4 * d.idx32.size();
+    write_le(os, d.idx32);
+  }
+  const char zeros[4] = {0, 0, 0, 0};
+  os.write(zeros, static_cast<std::streamsize>(p.idx_bytes - idx_bytes));
+}
+
+// Streams a yarn's primitives to `os` (BIN layout order), filling in their
+// position bounds; `side` and `caps` hold one primitive each at a time.
+void stream_tube(std::ostream& os, YarnLayout& y, const TubeSection& section, const TubeOptions& options,
+                 PrimitiveData& side, PrimitiveData& caps) {
+  const size_t K = static_cast<size_t>(section.size());
+  const size_t R = y.curve.size();
+  const size_t n_side = y.prims.size() - (options.capped ? 1 : 0);
+  side.reset(y.prims[0]);
+  if (options.capped) caps.reset(y.prims.back());
+
+  // ring r's vertices as vertices first.. of primitive p held in `d`
+  auto put_ring = [&](PrimitiveData& d, TubePrimitive& p, size_t first, const TubeRing& r) {
+    float* pos = d.pos.data() + 3 * first;
+    tube_ring_vertices(section, std::span<const TubeRing>(&r, 1), std::span<float>(pos, 3 * K),
+                       std::span<float>(d.nrm.data() + 3 * first, 3 * K));
+    for (size_t k = 0; k < K; ++k, pos += 3) {
+      for (size_t c = 0; c < 3; ++c) {
+        p.lo[c] = std::min(p.lo[c], pos[c]);
+        p.hi[c] = std::max(p.hi[c], pos[c]);
+      }
+    }
+  };
+  const TubeRing zero{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0};
+  std::array<TubeRing, 2> pair = {zero, zero};  // rings i-1 and i
+  size_t c = 0, j = 0;                          // ring i-1 is ring j of side primitive c
+  for_each_tube_ring(y.curve, options, [&](size_t i, const TubeRing& r) {
+    pair[0] = pair[1];
+    pair[1] = r;
+    if (i == 0) {
+      put_ring(side, y.prims[0], 0, r);
+    } else {
+      TubePrimitive& p = y.prims[c];
+      put_ring(side, p, (j + 1) * K, r);
+      const size_t n = 6 * K;
+      const uint32_t base = static_cast<uint32_t>(j * K);
+      if (p.short_indices) {
+        side.idx16.resize(side.idx16.size() + n);
+        tube_side_indices(pair, static_cast<int>(K), base,
+                          std::span<uint16_t>(side.idx16.data() + side.idx16.size() - n, n));
+      } else {
+        side.idx32.resize(side.idx32.size() + n);
+        tube_side_indices(pair, static_cast<int>(K), base,
+                          std::span<uint32_t>(side.idx32.data() + side.idx32.size() - n, n));
+      }
+      ++j;
+      if (j + 1 == p.rings && c + 1 < n_side) {  // the shared ring starts the next primitive
+        write_primitive(os, p, side);
+        ++c;
+        j = 0;
+        side.reset(y.prims[c]);
+        put_ring(side, y.prims[c], 0, r);
+      }
+    }
+    if (options.capped && (i == 0 || i + 1 == R)) {
+      // the caps: a copy of the end ring (vertices 0..K-1) and a centre
+      // (K) per end, all with the end's axial normal
+      TubePrimitive& p = y.prims.back();
+      const size_t end = i == 0 ? 0 : 1, first = end * (K + 1);
+      put_ring(caps, p, first, r);
+      const Vec3 t = r.u.cross(r.w).normalized();
+      const Vec3 axis = end == 0 ? Vec3(-t) : t;
+      for (size_t k = 0; k <= K; ++k) {
+        for (size_t d = 0; d < 3; ++d) {
+          caps.nrm[3 * (first + k) + d] = static_cast<float>(axis[static_cast<Eigen::Index>(d)]);
+        }
+      }
+      for (size_t d = 0; d < 3; ++d) {
+        const float v = static_cast<float>(r.centre[static_cast<Eigen::Index>(d)]);
+        caps.pos[3 * (first + K) + d] = v;
+        p.lo[d] = std::min(p.lo[d], v);
+        p.hi[d] = std::max(p.hi[d], v);
+      }
+    }
+  });
+  write_primitive(os, y.prims[n_side - 1], side);
+  if (options.capped) {
+    // K triangles per end, CCW seen from outside
+    const TubePrimitive& p = y.prims.back();
+    const uint32_t k_ring = static_cast<uint32_t>(K);
+    auto put = [&](uint32_t v) {
+      if (p.short_indices)
+        caps.idx16.push_back(static_cast<uint16_t>(v));
+      else
+        caps.idx32.push_back(v);
+    };
+    for (uint32_t end = 0; end < 2; ++end) {
+      const uint32_t first = end * (k_ring + 1), centre = first + k_ring;
+      for (uint32_t k = 0; k < k_ring; ++k) {
+        const uint32_t k1 = k + 1 == k_ring ? 0 : k + 1;
+        put(centre);
+        put(end == 0 ? first + k1 : first + k);
+        put(end == 0 ? first + k : first + k1);
+      }
+    }
+    write_primitive(os, p, caps);
+  }
+}
+
+// A JSON number for a float in a fixed-width slot: the shortest text that
+// reads back as the same float, padded with spaces (JSON whitespace).
+constexpr size_t kNumberSlot = 16;
+std::string slot_marker(size_t i) { return fmt::format("~{:013}", i); }  // 14 chars + 2 quotes
+std::string slot_number(float v) {
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".e") == std::string::npos && s.find("inf") == std::string::npos) s += ".0";
+  s.resize(kNumberSlot, ' ');
+  return s;
+}
+
+}  // namespace
+
+YarnGlbSummary write_yarn_glb(const std::string& path, const YarnModel& yarn, const KnitParams& params,
+                              const TubeOptions& options, std::span<const RenderColour> colours) {
+  const double radius = tube_radius(options, params);
+  const TubeSection section = tube_section(options, radius);
+  const size_t K = static_cast<size_t>(section.size());
+  const double spacing = tube_ring_spacing(options, radius);
+
+  // Layout: every tube's primitives and their places in the BIN chunk.
+  std::vector<YarnLayout> layouts;
+  YarnGlbSummary summary;
+  uint64_t bin_length = 0;
+  for (size_t i = 0; i < yarn.yarns.size(); ++i) {
+    const Yarn& y = yarn.yarns[i];
+    YarnLayout l;
+    try {
+      l.curve = smooth_polyline(y.points, spacing);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: yarn {} (id {}): {}", path, i, y.id, e.what()));
+    }
+    if (l.curve.size() < 2) continue;
+    l.name = fmt::format("yarn {}", y.id);
+    l.colour = colours.empty() ? RenderColour{200, 200, 200} : colours[i % colours.size()];
+    l.prims = tube_layout(l.curve.size(), K, options.capped, bin_length, l.step);
+    const size_t R = l.curve.size();
+    summary.vertices += R * K + (options.capped ? 2 * (K + 1) : 0);
+    summary.triangles += 2 * K * (R - 1) + (options.capped ? 2 * K : 0);
+    if (bin_length > std::numeric_limits<uint32_t>::max()) {
+      throw InvalidInput(
+          fmt::format("{}: the tubes need more than the 4 GiB a GLB file holds; use a coarser tube detail "
+                      "(larger ring spacing, fewer vertices per ply)",
+                      path));
+    }
+    layouts.push_back(std::move(l));
+  }
+  if (layouts.empty())
+    throw InvalidInput(fmt::format("{}: no yarn has 2 distinct points; nothing to write", path));
+
+  // The JSON, with a fixed-width slot for every position bound (known only
+  // once the vertices are made): written first, rewritten at the end.
+  nlohmann::json accessors = nlohmann::json::array(), views = nlohmann::json::array(),
+                 gmeshes = nlohmann::json::array(), nodes = nlohmann::json::array(),
+                 materials = nlohmann::json::array(), scene_nodes = nlohmann::json::array();
+  size_t slots = 0;
+  auto view = [&](uint64_t offset, uint64_t length, int target) {
+    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", target}});
+    return views.size() - 1;
+  };
+  for (size_t m = 0; m < layouts.size(); ++m) {
+    const YarnLayout& l = layouts[m];
+    nlohmann::json prims = nlohmann::json::array();
+    for (const TubePrimitive& p : l.prims) {
+      const size_t pos = accessors.size();
+      nlohmann::json lo = nlohmann::json::array(), hi = nlohmann::json::array();
+      for (int k = 0; k < 3; ++k) lo.push_back(slot_marker(slots++));
+      for (int k = 0; k < 3; ++k) hi.push_back(slot_marker(slots++));
+      accessors.push_back({{"bufferView", view(p.offset, 12 * p.nv, kArrayBuffer)},
+                           {"componentType", kFloat},
+                           {"count", p.nv},
+                           {"type", "VEC3"},
+                           {"min", lo},
+                           {"max", hi}});
+      accessors.push_back({{"bufferView", view(p.offset + 12 * p.nv, 12 * p.nv, kArrayBuffer)},
+                           {"componentType", kFloat},
+                           {"count", p.nv},
+                           {"type", "VEC3"}});
+      accessors.push_back({{"bufferView", view(p.offset + 24 * p.nv, p.idx_bytes, kElementArrayBuffer)},
+                           {"componentType", p.short_indices ? kUnsignedShort : kUnsignedInt},
+                           {"count", p.n_indices},
+                           {"type", "SCALAR"}});
+      prims.push_back({{"attributes", {{"POSITION", pos}, {"NORMAL", pos + 1}}},
+                       {"indices", pos + 2},
+                       {"material", m},
+                       {"mode", 4}});
+    }
+    materials.push_back({{"name", l.name},
+                         {"pbrMetallicRoughness",
+                          {{"baseColorFactor",
+                            {srgb_to_linear(l.colour[0] / 255.0), srgb_to_linear(l.colour[1] / 255.0),
+                             srgb_to_linear(l.colour[2] / 255.0), 1.0}},
+                           {"metallicFactor", 0.0},
+                           {"roughnessFactor", 0.8}}}});
+    gmeshes.push_back({{"name", l.name}, {"primitives", prims}});
+    nodes.push_back({{"name", l.name}, {"mesh", m}});
+    scene_nodes.push_back(m);
+  }
+  const nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
+                              {"scene", 0},
+                              {"scenes", {{{"nodes", scene_nodes}}}},
+                              {"nodes", nodes},
+                              {"meshes", gmeshes},
+                              {"materials", materials},
+                              {"accessors", accessors},
+                              {"bufferViews", views},
+                              {"buffers", {{{"byteLength", bin_length}}}}};
+  std::string json = doc.dump();
+  while (json.size() % 4 != 0) json.push_back(' ');
+  const uint64_t total = 12 + 8 + json.size() + 8 + bin_length;
+  if (total > std::numeric_limits<uint32_t>::max()) {
+    throw InvalidInput(
+        fmt::format("{}: the tubes need {} bytes, more than the 4 GiB a GLB file holds; use a coarser tube "
+                    "detail (larger ring spacing, fewer vertices per ply)",
+                    path, total));
+  }
+  // where each slot's marker (with its quotes) is in the JSON text
+  // (names are "yarn <id>", so the only '"~' in the text are the markers)
+  std::vector<size_t> slot_at(slots, std::string::npos);
+  for (size_t at = json.find("\"~"); at != std::string::npos; at = json.find("\"~", at + kNumberSlot)) {
+    const size_t slot = std::stoul(json.substr(at + 2, 13));
+    if (slot < slots) slot_at[slot] = at;
+  }
+  if (std::find(slot_at.begin(), slot_at.end(), std::string::npos) != slot_at.end()) {
+    throw Error(fmt::format("{}: internal error: a position bound has no place in the glTF JSON", path));
+  }
+  std::string head;
+  put_u32(head, kMagic);
+  put_u32(head, 2);
+  put_u32(head, static_cast<uint32_t>(total));
+  put_u32(head, static_cast<uint32_t>(json.size()));
+  put_u32(head, kChunkJson);
+  const size_t json_at = head.size();
+  head += json;
+  put_u32(head, static_cast<uint32_t>(bin_length));
+  put_u32(head, kChunkBin);
+
+  write_file_atomically(
+      path,
+      [&](std::ostream& os) {
+        os.write(head.data(), static_cast<std::streamsize>(head.size()));
+        PrimitiveData side, caps;
+        for (YarnLayout& l : layouts) {
+          stream_tube(os, l, section, options, side, caps);
+          if (!os) throw IOError(fmt::format("{}: write failed (disk full?)", path));
+          l.curve = {};
+        }
+        // the bounds into their slots, then the final JSON over the first
+        size_t slot = 0;
+        for (const YarnLayout& l : layouts) {
+          for (const TubePrimitive& p : l.prims) {
+            for (const auto* b : {&p.lo, &p.hi}) {
+              for (float v : *b) {
+                if (!std::isfinite(v)) {
+                  throw InvalidInput(fmt::format("{}: {}: a coordinate overflows float32", path, l.name));
+                }
+                json.replace(slot_at[slot++], kNumberSlot, slot_number(v));
+              }
+            }
+          }
+        }
+        os.seekp(static_cast<std::streamoff>(json_at));
+        os.write(json.data(), static_cast<std::streamsize>(json.size()));
+        if (!os) throw IOError(fmt::format("{}: write failed (disk full?)", path));
+      },
+      true);
+  summary.meshes = layouts.size();
+  return summary;
 }
 
 }  // namespace knitforge

@@ -43,6 +43,11 @@ bool encode(const std::vector<png_bytep>& rows, int w, int h, std::string* out) 
   png_set_write_fn(png, out, append, flush);
   png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // No per-row filter: our pictures are flat colour areas that deflate
+  // compresses well as they are, and libpng's default adaptive filtering
+  // (trying all five filters on every row) took 60 % of the time of a
+  // 1.7-megapixel knitting map (79 ms -> 31 ms; the file grows 16 -> 32 kB).
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
   png_write_info(png, info);
   png_write_image(png, const_cast<png_bytepp>(rows.data()));
   png_write_end(png, nullptr);

@@ -17,7 +17,10 @@
 /// on the same ply nearest in angle, so the side triangles follow the plies.
 ///
 /// Output: one RenderMesh per yarn (triangles CCW seen from outside, unit
-/// vertex normals, one colour for all vertices of a yarn). A side vertex's
+/// vertex normals, RenderMesh::colour = the yarn's colour; no per-vertex
+/// colours). tube_rings(), tube_section() and tube_ring_vertices() give the
+/// same geometry ring by ring in float32 for writers that stream it
+/// (write_yarn_glb()) without building the double-precision mesh. A side vertex's
 /// normal is the outward perpendicular, in its cross-section's plane, of the
 /// chord between its two cross-section neighbours (radial for a round
 /// section); cap vertices have the axial normal. Vertices are
@@ -26,6 +29,8 @@
 /// centre per end, with the end's axial normal). Cost is linear in the number
 /// of rings times K.
 
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -78,14 +83,81 @@ struct CurveFrames {
 /// \throw InvalidInput when fewer than 2 samples or two consecutive samples coincide.
 CurveFrames parallel_transport_frames(std::span<const Vec3> curve);
 
+/// The cross-section of a tube: K = plies * vertices_per_ply vertices at
+/// offsets (x[k], y[k]) mm in a ring's (u, w) axes, with shading normal
+/// directions (nx[k], ny[k]) (unit) in the same axes.
+struct TubeSection {
+  int plies = 0;
+  int vertices_per_ply = 0;
+  std::vector<double> x, y, nx, ny;
+  int size() const { return plies * vertices_per_ply; }
+};
+
+/// The cross-section of `options` at `radius` (see the file comment).
+/// \throw InvalidInput for options out of range (as yarn_tube()).
+TubeSection tube_section(const TubeOptions& options, double radius);
+
+/// One cross-section ring of a tube: its centre on the smoothed curve and
+/// its axes u, w (the parallel-transport normal and binormal rotated by the
+/// twist phase; unit, orthogonal, u x w = the curve tangent). Vertex k of
+/// the ring is centre + x[k] u + y[k] w. `shift` joins ring i to ring i+1:
+/// vertex k of ring i is connected to vertex (k + shift) mod K of ring i+1.
+struct TubeRing {
+  Vec3 centre;
+  Vec3 u, w;
+  int shift = 0;
+};
+
+/// The distance between a tube's rings: options.ring_spacing, or `radius`
+/// when it is 0.
+double tube_ring_spacing(const TubeOptions& options, double radius);
+
+/// Calls ring(i, r) for ring i = 0, 1, ... of the tube along `curve` (a
+/// smooth_polyline() output, one ring per sample) in order, without storing
+/// the rings: the streaming form of tube_rings().
+/// \throw InvalidInput when the curve has fewer than 2 samples or two
+///        consecutive samples coincide; whatever `ring` throws.
+void for_each_tube_ring(std::span<const Vec3> curve, const TubeOptions& options,
+                        const std::function<void(size_t, const TubeRing&)>& ring);
+
+/// The rings of the tube of `polyline` (smooth_polyline() at the ring
+/// spacing, parallel-transport frames, twist): everything yarn_tube() needs
+/// except the cross-section. Empty when the polyline has fewer than 2
+/// distinct points. Linear in the number of rings.
+/// \throw InvalidInput for a non-finite point or options out of range.
+std::vector<TubeRing> tube_rings(std::span<const Vec3> polyline, const TubeOptions& options, double radius);
+
+/// Float32 vertices of consecutive rings: ring j, vertex k goes to
+/// positions[3 (j K + k) + 0..2] and its unit normal to normals[...] (the
+/// same values as yarn_tube()'s, rounded to float).
+/// \throw InvalidInput unless positions.size() == normals.size() == 3 K rings.size().
+void tube_ring_vertices(const TubeSection& section, std::span<const TubeRing> rings,
+                        std::span<float> positions, std::span<float> normals);
+
+/// The 2 K (rings.size() - 1) side triangles between consecutive `rings`
+/// (CCW seen from outside, yarn_tube()'s order), vertex j K + k = ring j,
+/// vertex k, written as 3 indices each to `indices`, plus `base` added.
+/// \throw InvalidInput unless indices.size() == 6 K (rings.size() - 1) and
+///        the largest index fits the index type.
+void tube_side_indices(std::span<const TubeRing> rings, int k_ring, uint32_t base,
+                       std::span<uint32_t> indices);
+void tube_side_indices(std::span<const TubeRing> rings, int k_ring, uint32_t base,
+                       std::span<uint16_t> indices);
+
 /// The tube mesh of one polyline (see the file comment), in one colour.
 /// A polyline with fewer than 2 distinct points gives an empty mesh.
 /// \throw InvalidInput for a non-finite point or options out of range
 ///        (radius <= 0 after the default, plies < 1, vertices_per_ply < 1,
+///        more than 2^20 vertices per ring,
 ///        ply_depth outside [0, 1], non-finite twist, ring_spacing < 0, or
 ///        more than 2^31 vertices).
 RenderMesh yarn_tube(std::span<const Vec3> polyline, const TubeOptions& options, double radius,
                      const RenderColour& colour);
+
+/// The tube radius yarn_tubes() uses: options.radius, or 0.12 *
+/// params.stitch_width when it is 0.
+/// \throw InvalidInput for a non-positive stitch width when the radius is defaulted.
+double tube_radius(const TubeOptions& options, const KnitParams& params);
 
 /// Tubes of every yarn of `yarn`, named "yarn <id>". Yarn i (position in
 /// yarn.yarns) gets colours[i % colours.size()] (grey when colours is empty).
