@@ -32,6 +32,11 @@ TEST_F(Cli, RenderWritesEachFormatAndReportRebuildsThePage) {
   EXPECT_EQ(img.height, 240);
   ASSERT_EQ(run("render " + path("cup.ply") + " --ply-vertices 1 -o " + path("cup.glb")).code, 0);
   EXPECT_EQ(slurp(path("cup.glb")).substr(0, 4), "glTF");
+  // Full detail (the default for a design this small) vs. preview detail.
+  ASSERT_EQ(run("render " + path("cup.ply") + " -o " + path("full.glb")).code, 0);
+  ASSERT_EQ(run("render " + path("cup.ply") + " --detail preview -o " + path("preview.glb")).code, 0);
+  EXPECT_LT(2 * fs::file_size(path("preview.glb")), fs::file_size(path("full.glb")));
+  EXPECT_EQ(run("render " + path("cup.ply") + " --detail coarse -o " + path("x.glb")).code, 2);
   ASSERT_EQ(run("render " + path("cup.ply") + " --mesh -o " + path("cup.svg")).code, 0);
   EXPECT_NE(slurp(path("cup.svg")).find("<svg"), std::string::npos);
   EXPECT_EQ(run("render " + path("cup.ply") + " -o " + path("cup.bmp")).code, 1);
