@@ -2,6 +2,7 @@
 // (seed §3.2), with evaluation and a report.
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -233,17 +234,21 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         }
         write_stitch_mesh_ply(out("stitch_mesh.ply"), d.stitch_mesh, designed);
       }
+      // The map pictures and the yarn model are written on the second core
+      // while this thread writes the rest (they read `d` only).
+      std::future<void> second = std::async(std::launch::async, [&d, &out, &params] {
+        write_knitting_map_png(out("knitting_map.png"), d.map);
+        write_knitting_map_svg(out("knitting_map.svg"), d.map);
+        // The yarn follows the one-stroke knitting order, which only a
+        // knittable stitch mesh has.
+        if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
+      });
       write_knitting_map_csv(out("knitting_map.csv"), d.map);
-      write_knitting_map_png(out("knitting_map.png"), d.map);
-      write_knitting_map_svg(out("knitting_map.svg"), d.map);
       std::vector<std::vector<Vec3>> wales;
       for (const auto& level : d.wales.wales) {
         for (const auto& w : level) wales.push_back(w.points);
       }
       write_polylines_obj(out("wales.obj"), wales);
-      // The yarn follows the one-stroke knitting order, which only a
-      // knittable stitch mesh has.
-      if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
       if (!d.wales.cuts.empty()) {
         std::vector<std::vector<Vec3>> cuts;
         for (const auto& c : d.wales.cuts) cuts.push_back(c.path);
@@ -327,6 +332,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       report["field"] = {{"signed", d.field_signed}, {"windows", d.field_windows}};
       report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
       report["knittable"] = d.map_check.ok() && d.mesh_check.ok();
+      second.get();  // rethrows what the second thread threw
       report["seconds"] = {{"load", load_seconds},
                            {"field", d.seconds.field},
                            {"wales", d.seconds.wales},
