@@ -343,31 +343,38 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
   const Strip s(a, b);
   const int na = s.na(), nb = s.nb();
 
-  // Bijective closest pairs among the even samples.
-  std::vector<int> near_b(static_cast<size_t>(na + 1)), near_a(static_cast<size_t>(nb + 1));
-  auto dist2 = [&](int i, int j) {
-    return (a[static_cast<size_t>(2 * i)] - b[static_cast<size_t>(2 * j)]).squaredNorm();
+  // Bijective closest pairs among the even samples, counting only samples
+  // where the two wales run the same way (a wale that folds back next to
+  // the other, around a cut, must not pair its returning half).
+  auto tangent = [](const std::vector<Vec3>& w, int k) {
+    const size_t lo = static_cast<size_t>(std::max(k - 2, 0));
+    const size_t hi = std::min(static_cast<size_t>(k) + 2, w.size() - 1);
+    return Vec3(w[hi] - w[lo]);
   };
+  auto dist2 = [&](int i, int j) {
+    const double d = (a[static_cast<size_t>(2 * i)] - b[static_cast<size_t>(2 * j)]).squaredNorm();
+    return tangent(a, 2 * i).dot(tangent(b, 2 * j)) > 0.0 ? d : kInf;
+  };
+  std::vector<int> near_b(static_cast<size_t>(na + 1), -1), near_a(static_cast<size_t>(nb + 1), -1);
   for (int i = 0; i <= na; ++i) {
-    int best = 0;
-    double best_d = dist2(i, 0);
-    for (int j = 1; j <= nb; ++j)
-      if (const double d = dist2(i, j); d < best_d) best = j, best_d = d;
-    near_b[static_cast<size_t>(i)] = best;
+    double best_d = kInf;
+    for (int j = 0; j <= nb; ++j)
+      if (const double d = dist2(i, j); d < best_d) near_b[static_cast<size_t>(i)] = j, best_d = d;
   }
   for (int j = 0; j <= nb; ++j) {
-    int best = 0;
-    double best_d = dist2(0, j);
-    for (int i = 1; i <= na; ++i)
-      if (const double d = dist2(i, j); d < best_d) best = i, best_d = d;
-    near_a[static_cast<size_t>(j)] = best;
+    double best_d = kInf;
+    for (int i = 0; i <= na; ++i)
+      if (const double d = dist2(i, j); d < best_d) near_a[static_cast<size_t>(j)] = i, best_d = d;
   }
   std::vector<std::array<int, 2>> pairs;
   for (int i = 0; i <= na; ++i) {
     const int j = near_b[static_cast<size_t>(i)];
-    if (near_a[static_cast<size_t>(j)] == i) pairs.push_back({i, j});
+    if (j >= 0 && near_a[static_cast<size_t>(j)] == i) pairs.push_back({i, j});
   }
-  // There is always one: the globally closest pair is mutual.
+  // There is one whenever some pair runs the same way (the closest such pair
+  // is mutual); wales that run against each other everywhere are joined
+  // from their starts.
+  if (pairs.empty()) pairs.push_back({0, 0});
   const std::array<int, 2> source = pairs.front();
   std::array<int, 2> target = source;
   for (const auto& p : pairs)

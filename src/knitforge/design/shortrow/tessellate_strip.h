@@ -81,7 +81,12 @@
 ///
 /// The source and target nodes are the first and last bijective closest
 /// pairs (a_{2i}'s closest even sample of B is b_{2j} and vice versa, ties to
-/// the lower index); the target is the last such pair that can be reached
+/// the lower index), among the pairs of samples where A and B run the same
+/// way (their directions, chords from sample k-2 to k+2 clamped at the ends,
+/// have a positive dot product): a wale that folds back next to the other,
+/// as the two sides of a cut do, must not pair its returning half, or the
+/// whole strip collapses into one fan (when no pair runs the same way, the
+/// source is (0, 0)); the target is the last such pair that can be reached
 /// from the source (j_t >= j_s and j_t - j_s <= 3 (i_t - i_s)). Between them
 /// the graph uses the bridge-length limit lambda; lambda starts at
 /// options.lambda (default sw + 2 sh) and grows by 10 % until a path exists.

@@ -13,8 +13,27 @@ namespace knitforge {
 
 namespace {
 
+/// Direction of wale w at sample k: the chord from sample k-2 to sample
+/// k+2 (clamped at the ends). Two segments each way, so that an end
+/// extension poking across a cut (whose direction is unrelated to the
+/// wale's) does not decide it alone.
+Vec3 tangent(const std::vector<Vec3>& w, size_t k) {
+  const size_t lo = k > 1 ? k - 2 : 0;
+  const size_t hi = std::min(k + 2, w.size() - 1);
+  return w[hi] - w[lo];
+}
+
+/// True when the wales run the same way at the two samples (the wale
+/// directions agree). Samples of neighbouring wales that run against each
+/// other lie on the two sides of a cut (or of a narrow notch) and must not
+/// be paired: a strip between them would cross it.
+bool same_way(const std::vector<Vec3>& w, size_t k, const std::vector<Vec3>& v, size_t m) {
+  return tangent(w, k).dot(tangent(v, m)) > 0.0;
+}
+
 /// For every even sample of `from`, the piece of `to` holding the nearest
-/// even sample (-1 when `to` is empty).
+/// even sample whose wale runs the same way (0 when `to` has one piece; -1
+/// when `to` is empty or no sample runs the same way).
 std::vector<int> nearest_piece(const WaleCurve& from, const std::vector<WaleCurve>& to) {
   std::vector<int> owner;
   for (size_t k = 0; k < from.points.size(); k += 2) {
@@ -25,6 +44,7 @@ std::vector<int> nearest_piece(const WaleCurve& from, const std::vector<WaleCurv
     } else {
       for (size_t q = 0; q < to.size(); ++q) {
         for (size_t m = 0; m < to[q].points.size(); m += 2) {
+          if (!same_way(from.points, k, to[q].points, m)) continue;
           const double d = (from.points[k] - to[q].points[m]).squaredNorm();
           if (d < best_d) {
             best_d = d;
@@ -61,18 +81,23 @@ std::pair<int, int> owned_range(const std::vector<int>& owner, int piece) {
   return {2 * best_first, 2 * (best_first + best_len - 1)};
 }
 
-/// Even sample of `w` in [lo, hi] nearest to x.
-int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const Vec3& x) {
-  int best = lo;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int k = lo; k <= hi; k += 2) {
-    const double d = (w[k] - x).squaredNorm();
-    if (d < best_d) {
+/// Even sample of `w` in [lo, hi] nearest to sample k of `v`, among those
+/// where the two wales run the same way (all of them when none does).
+int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const std::vector<Vec3>& v, int k) {
+  int best = -1, any = lo;
+  double best_d = std::numeric_limits<double>::infinity(), any_d = best_d;
+  for (int m = lo; m <= hi; m += 2) {
+    const double d = (w[m] - v[k]).squaredNorm();
+    if (d < any_d) {
+      any_d = d;
+      any = m;
+    }
+    if (d < best_d && same_way(w, m, v, k)) {
       best_d = d;
-      best = k;
+      best = m;
     }
   }
-  return best;
+  return best >= 0 ? best : any;
 }
 
 /// Shortens the overhang of the longer wale beyond each end of the shorter
@@ -82,16 +107,16 @@ void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int&
   auto half_even = [](int n) { return 2 * ((n / 2) / 2); };  // n even: half of it, rounded down to even
   if (a1 - a0 < 4 || b1 - b0 < 4) return;  // keep at least two segments per side after trimming
   // Bottom ends.
-  const int jb = nearest_even(b, b0, b1, a[a0]);
-  const int ia = nearest_even(a, a0, a1, b[b0]);
+  const int jb = nearest_even(b, b0, b1, a, a0);
+  const int ia = nearest_even(a, a0, a1, b, b0);
   if (jb > b0) {
     b0 += half_even(jb - b0);
   } else if (ia > a0) {
     a0 += half_even(ia - a0);
   }
   // Top ends.
-  const int jt = nearest_even(b, b0, b1, a[a1]);
-  const int it = nearest_even(a, a0, a1, b[b1]);
+  const int jt = nearest_even(b, b0, b1, a, a1);
+  const int it = nearest_even(a, a0, a1, b, b1);
   if (jt < b1) {
     b1 -= half_even(b1 - jt);
   } else if (it < a1) {
@@ -99,6 +124,21 @@ void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int&
   }
   if (a1 - a0 < 2) a1 = a0 + 2;
   if (b1 - b0 < 2) b1 = b0 + 2;
+}
+
+/// Which ends of a strip carry the apex of a fan of short-row ends.
+struct FanEnds {
+  bool a_low = false, a_high = false, b_low = false, b_high = false;
+};
+
+FanEnds fan_ends(const StripTessellation& t, int nb) {
+  FanEnds f;
+  for (const StripStep& st : t.steps) {
+    if (st.op == StripOperator::BFan) (st.i == 0 ? f.a_low : f.a_high) = true;
+    if (st.op == StripOperator::AAdvance && st.j == 0) f.b_low = true;
+    if (st.op == StripOperator::AAdvance && st.j == nb) f.b_high = true;
+  }
+  return f;
 }
 
 struct Box {
@@ -164,13 +204,8 @@ WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& par
         auto [a0, a1] = owned_range(lower_owner[p], static_cast<int>(q));
         auto [b0, b1] = owned_range(upper_owner[q], static_cast<int>(p));
         if (a0 < 0 || b0 < 0) continue;
+        const int a0_owned = a0, a1_owned = a1, b0_owned = b0, b1_owned = b1;
         trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1);
-        const std::vector<Vec3> a(lower[p].points.begin() + a0, lower[p].points.begin() + a1 + 1);
-        const std::vector<Vec3> b(upper[q].points.begin() + b0, upper[q].points.begin() + b1 + 1);
-        Box box;
-        for (const Vec3& x : a) box.add(x);
-        for (const Vec3& x : b) box.add(x);
-
         StripOptions so;
         so.stitch_width = sw;
         so.stitch_height = sh;
@@ -178,12 +213,34 @@ WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& par
         so.mu = options.mu;
         so.diffusion_length = diffusion_length;
         so.strip_index = out.num_strips;
-        for (size_t k = 0; k < out.apexes.size(); ++k) {
-          if (!out.apex_on_wale_end[k] && box.contains(out.apexes[k], margin)) {
-            so.previous_apexes.push_back(out.apexes[k]);
+        StripTessellation t;
+        std::vector<Vec3> a, b;
+        for (;;) {
+          a.assign(lower[p].points.begin() + a0, lower[p].points.begin() + a1 + 1);
+          b.assign(upper[q].points.begin() + b0, upper[q].points.begin() + b1 + 1);
+          Box box;
+          for (const Vec3& x : a) box.add(x);
+          for (const Vec3& x : b) box.add(x);
+          so.previous_apexes.clear();
+          for (size_t k = 0; k < out.apexes.size(); ++k) {
+            if (!out.apex_on_wale_end[k] && box.contains(out.apexes[k], margin)) {
+              so.previous_apexes.push_back(out.apexes[k]);
+            }
           }
+          t = tessellate_strip(a, b, so);
+          // A fan of short-row ends whose apex is an end of the strip but
+          // not of the paired run (an end that trim_overhangs() moved)
+          // would sit in the middle of that wale, next to the stitches
+          // across it, and become a detached column of stitches in the
+          // post-processing: give the trimmed samples back and retry.
+          const FanEnds f = fan_ends(t, static_cast<int>(b.size()) / 2);
+          bool grown = false;
+          if (f.a_low && a0 > a0_owned) a0 -= 2, grown = true;
+          if (f.a_high && a1 < a1_owned) a1 += 2, grown = true;
+          if (f.b_low && b0 > b0_owned) b0 -= 2, grown = true;
+          if (f.b_high && b1 < b1_owned) b1 += 2, grown = true;
+          if (!grown) break;
         }
-        const StripTessellation t = tessellate_strip(a, b, so);
         const int base_a = offset[l][p] + a0, base_b = offset[l + 1][q] + b0;
         const int na = static_cast<int>(a.size());
         for (const StripFace& f : t.faces) {

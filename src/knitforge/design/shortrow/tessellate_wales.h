@@ -9,12 +9,17 @@
 /// Strips. When both levels have one wale, the strip is the pair of whole
 /// wales. When a level has several pieces (the isocurve split around a peak
 /// or a notch of the boundary), the even samples of every piece are given to
-/// the nearest piece of the other level (3D distance between even samples);
-/// a pair of pieces forms a strip over the longest run of consecutive even
-/// samples each gives the other (at least two segments on each side), so
-/// strips never share a wale segment on the same side. Pieces that pair with
-/// nothing are reported; samples outside every run stay uncovered (a notch
-/// in the fabric where the isocurve splits).
+/// the nearest piece of the other level (3D distance between even samples),
+/// counting only samples where the two wales run the same way (wale
+/// directions, as chords over two segments each way, with a positive dot
+/// product): next to a cut made to open a closed isocurve, the wales on its
+/// two sides run in opposite directions a fraction of a millimetre apart,
+/// and pairing across it would fold a strip over the cut. A pair of pieces
+/// forms a strip over the longest run of consecutive even samples each gives
+/// the other (at least two segments on each side), so strips never share a
+/// wale segment on the same side. Pieces that pair with nothing are
+/// reported; samples outside every run stay uncovered (a notch in the
+/// fabric where the isocurve splits).
 ///
 /// Overhangs. Where one wale of a strip runs on beyond the end of the other
 /// (near the boundary the wales end at different heights), the strip covers
@@ -24,7 +29,15 @@
 /// (boundary_apex_quads.h), and half the overhang's length of full stitches
 /// has the area of the triangle of surface the overhang spans. Covering the
 /// whole overhang would add about one stitch per two boundary samples beyond
-/// the surface.
+/// the surface. The trimming looks for the nearest samples running the same
+/// way, like the pairing. When the strip nevertheless ends in a fan whose
+/// apex is a trimmed end (e.g. the tiny opened loop at the top of a peak,
+/// whose last samples pair with nothing), that apex would lie in the middle
+/// of its wale, on the edge of the fabric, and the post-processing would
+/// turn the fan into a column of stitches detached from the stitches across
+/// the wale (a second last course): the trimmed samples at that end are
+/// given back two at a time, and the strip tessellated again, until no fan
+/// sits on a trimmed end.
 ///
 /// Vertices. Every wale sample is one vertex of the mesh (wale by wale, in
 /// level order); faces of neighbouring strips therefore share the samples of
