@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "knitforge/convert/stitch_mesh_to_yarn.h"
 #include "knitforge/core/stitch.h"
+#include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/design/shortrow/design_short_rows.h"
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/evaluate/scalar_stats.h"
@@ -364,7 +365,20 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
         std::fprintf(stderr, "%s", r.text().c_str());
         note("the design is NOT knittable (details in report.json); outputs were written for inspection");
-        if (!d.wales.cuts.empty() || d.unpaired_pieces > 0) {
+        int pieces = 1;
+        try {
+          StitchAdjacency(d.stitch_mesh).halfedges().face_components(&pieces);
+        } catch (const Error&) {
+          pieces = 1;  // the checker has said what is wrong with the mesh
+        }
+        if (pieces > 1) {
+          note(fmt::format(
+              "the stitches fall apart into {} separate pieces: the field has a ridge (a line of maxima "
+              "where wales from two parts of the source meet, e.g. a plane that cuts the surface twice), "
+              "which no course crosses; choose a source whose field rises to one side only, e.g. a "
+              "plane that cuts the surface once, or a part of the boundary",
+              pieces));
+        } else if (!d.wales.cuts.empty() || d.unpaired_pieces > 0) {
           note(fmt::format(
               "the field needed {} cut(s) and has {} unpaired wale piece(s): where it branches the "
               "courses cannot be knitted in one stroke; try a source that avoids the cut locus, e.g. "

@@ -49,7 +49,8 @@ TEST(WaleCurves, FlatRectangleGivesStraightEvenlySampledWales) {
       // Straight, vertical, running up (+y = n x grad F with n = +z, grad F = +x).
       EXPECT_NEAR(c.points[k].x() - box.min.x(), c.value, 1e-9);
       EXPECT_GT(d.y(), 0.0);
-      EXPECT_NEAR(d.norm(), p.stitch_height, 0.5 * p.stitch_height / (c.points.size() - 1) + 1e-9);
+      // n equal segments, n the even count nearest to L / sh: |L/n - sh| <= sh / n.
+      EXPECT_NEAR(d.norm(), p.stitch_height, p.stitch_height / (c.points.size() - 1) + 1e-9);
     }
   }
 }
@@ -189,11 +190,15 @@ TEST(DesignShortRows, FlatDiskNeedsSupportStitchesAndEndsKnittable) {
 }
 
 TEST(DesignShortRows, MonkeySaddleAndTriplePeakAboutTheirSymmetryPlanes) {
-  {
+  // The monkey saddle's wales end at grazing angles along much of its
+  // boundary: the stitch count stays within the 5 % of the area only
+  // if overhangs are trimmed to half on average and long wales are not
+  // extended off the surface (tessellate_wales.h, wale_curves.h).
+  for (const Vec3& normal : {Vec3(0, 1, 0), Vec3(1, 0, 0)}) {
     const TriMesh m = monkey_saddle();
     const KnitParams p{3.5, 2.8};
-    const ShortRowDesign d = run(m, source_from_plane(m, Vec3(0, 1, 0), 0.0), p);
-    expect_knittable(d, p, 0.12);
+    const ShortRowDesign d = run(m, source_from_plane(m, normal, 0.0), p);
+    expect_knittable(d, p, 0.05);
   }
   {
     const TriMesh m = triple_peak();

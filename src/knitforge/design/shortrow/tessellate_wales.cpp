@@ -101,29 +101,41 @@ int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const std::vector<V
 }
 
 /// Shortens the overhang of the longer wale beyond each end of the shorter
-/// one to half its length (see the header).
+/// one to half its length (see the header). An overhang of n segments (n
+/// even) should lose n / 2, but only whole pairs can go: when n / 2 is odd,
+/// one segment more or one fewer than half is kept, whichever keeps `carry`
+/// (segments kept beyond half, summed over the ends trimmed so far) closer
+/// to zero. Rounding every such end the same way would add (or remove) about
+/// half a stitch per boundary crossing.
 void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int& a0, int& a1, int& b0,
-                    int& b1) {
-  auto half_even = [](int n) { return 2 * ((n / 2) / 2); };  // n even: half of it, rounded down to even
-  if (a1 - a0 < 4 || b1 - b0 < 4) return;  // keep at least two segments per side after trimming
+                    int& b1, int& carry) {
+  auto trim = [&carry](int n) {  // segments to remove from an overhang of n (even)
+    const int lo = 2 * ((n / 2) / 2);
+    if ((n / 2) % 2 == 0) return lo;
+    if (std::abs(carry + 1) <= std::abs(carry - 1)) {
+      carry += 1;  // keeps one segment more than half
+      return lo;
+    }
+    carry -= 1;  // keeps one segment fewer than half
+    return lo + 2;
+  };
+  if (a1 - a0 < 2 || b1 - b0 < 2) return;
   // Bottom ends.
   const int jb = nearest_even(b, b0, b1, a, a0);
   const int ia = nearest_even(a, a0, a1, b, b0);
   if (jb > b0) {
-    b0 += half_even(jb - b0);
+    b0 += std::min(trim(jb - b0), b1 - b0 - 2);
   } else if (ia > a0) {
-    a0 += half_even(ia - a0);
+    a0 += std::min(trim(ia - a0), a1 - a0 - 2);
   }
   // Top ends.
   const int jt = nearest_even(b, b0, b1, a, a1);
   const int it = nearest_even(a, a0, a1, b, b1);
   if (jt < b1) {
-    b1 -= half_even(b1 - jt);
+    b1 -= std::min(trim(b1 - jt), b1 - b0 - 2);
   } else if (it < a1) {
-    a1 -= half_even(a1 - it);
+    a1 -= std::min(trim(a1 - it), a1 - a0 - 2);
   }
-  if (a1 - a0 < 2) a1 = a0 + 2;
-  if (b1 - b0 < 2) b1 = b0 + 2;
 }
 
 /// Which ends of a strip carry the apex of a fan of short-row ends.
@@ -191,6 +203,7 @@ WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& par
 
   const double margin = 4.0 * diffusion_length;
   std::vector<char> paired_flat(flat, 0);
+  int trim_carry = 0;  // see trim_overhangs()
   int flat_base = 0;
   for (size_t l = 0; l + 1 < wales.wales.size(); ++l) {
     const auto& lower = wales.wales[l];
@@ -205,7 +218,7 @@ WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& par
         auto [b0, b1] = owned_range(upper_owner[q], static_cast<int>(p));
         if (a0 < 0 || b0 < 0) continue;
         const int a0_owned = a0, a1_owned = a1, b0_owned = b0, b1_owned = b1;
-        trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1);
+        trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1, trim_carry);
         StripOptions so;
         so.stitch_width = sw;
         so.stitch_height = sh;

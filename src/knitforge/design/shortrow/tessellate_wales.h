@@ -29,7 +29,11 @@
 /// (boundary_apex_quads.h), and half the overhang's length of full stitches
 /// has the area of the triangle of surface the overhang spans. Covering the
 /// whole overhang would add about one stitch per two boundary samples beyond
-/// the surface. The trimming looks for the nearest samples running the same
+/// the surface. Only whole pairs of segments can be removed, so where half
+/// the overhang is an odd number of segments one end keeps a segment more
+/// than half and the next such end one fewer (a running balance over the
+/// whole tessellation); always keeping the extra segment added about 3 % to
+/// the monkey saddle's stitch count. The trimming looks for the nearest samples running the same
 /// way, like the pairing. When the strip nevertheless ends in a fan whose
 /// apex is a trimmed end (e.g. the tiny opened loop at the top of a peak,
 /// whose last samples pair with nothing), that apex would lie in the middle

@@ -191,7 +191,13 @@ WaleCurves compute_wale_curves(const TriMesh& mesh, const std::vector<double>& f
         ++out.dropped_pieces;
         continue;
       }
-      const ResampledPolyline r = resample_polyline(c.positions, sh);
+      // Long wales take the nearest even number of equal segments (within
+      // sh / n of the stitch height, on the surface); short ones, where that
+      // would stretch or squeeze their few segments a lot, are extended at
+      // both ends as the seed does (see the header).
+      ResampleOptions ro;
+      ro.extend_ends = len < options.extend_below * sh;
+      const ResampledPolyline r = resample_polyline(c.positions, sh, ro);
       WaleCurve w;
       w.level = static_cast<int>(l);
       w.value = out.values[l];
