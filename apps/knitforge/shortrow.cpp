@@ -235,15 +235,15 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         }
         write_stitch_mesh_ply(out("stitch_mesh.ply"), d.stitch_mesh, designed);
       }
-      // The map pictures and the yarn model are written on the second core
-      // while this thread writes the rest (they read `d` only).
-      std::future<void> second = std::async(std::launch::async, [&d, &out, &params] {
+      // The map pictures are written on the second core while this thread
+      // writes the rest (they read `d` only).
+      std::future<void> second = std::async(std::launch::async, [&d, &out] {
         write_knitting_map_png(out("knitting_map.png"), d.map);
         write_knitting_map_svg(out("knitting_map.svg"), d.map);
-        // The yarn follows the one-stroke knitting order, which only a
-        // knittable stitch mesh has.
-        if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
       });
+      // The yarn follows the one-stroke knitting order, which only a
+      // knittable stitch mesh has.
+      if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
       write_knitting_map_csv(out("knitting_map.csv"), d.map);
       std::vector<std::vector<Vec3>> wales;
       for (const auto& level : d.wales.wales) {
@@ -330,7 +330,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                           {"support_stitches", d.courses.support_stitches},
                           {"cuts", static_cast<int>(d.wales.cuts.size())},
                           {"cut_length_mm", cut_length}};
-      report["field"] = {{"signed", d.field_signed}, {"windows", d.field_windows}};
+      report["field"] = {
+          {"signed", d.field_signed}, {"windows", d.field_windows}, {"approximate", d.field_approximate}};
       report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
       report["knittable"] = d.map_check.ok() && d.mesh_check.ok();
       second.get();  // rethrows what the second thread threw

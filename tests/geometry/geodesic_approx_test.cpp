@@ -26,6 +26,7 @@ Comparison compare(const TriMesh& m, const GeodesicSource& src, double tol) {
   const GeodesicField ex = solver.distance(src);
   GeodesicOptions o;
   o.tolerance = tol;
+  o.max_saddle_fraction = 1.0;  // approximate on saddle meshes too
   const GeodesicField ap = solver.distance(src, o);
   Comparison c;
   c.exact_windows = ex.num_windows;
@@ -75,6 +76,35 @@ TEST(GeodesicApprox, ZeroToleranceIsTheExactField) {
   EXPECT_EQ(a.num_windows, b.num_windows);
   ASSERT_EQ(a.distance.size(), b.distance.size());
   for (size_t v = 0; v < a.distance.size(); ++v) EXPECT_EQ(a.distance[v], b.distance[v]) << v;
+}
+
+TEST(GeodesicApprox, SaddleMeshesGetTheExactField) {
+  // The triple-peak is mostly saddle vertices: with the default
+  // max_saddle_fraction the tolerance is not used (same field, same windows
+  // as exact); the hemisphere has none and is approximated.
+  {
+    const TriMesh m = triple_peak(4.0);
+    const GeodesicSource src = source_from_plane(m, Vec3(1, 0, 0), 0.0);
+    const GeodesicSolver solver(m);
+    const GeodesicField exact = solver.distance(src);
+    GeodesicOptions o;
+    o.tolerance = 1e-3;
+    const GeodesicField f = solver.distance(src, o);
+    EXPECT_FALSE(f.approximate);
+    EXPECT_EQ(f.num_windows, exact.num_windows);
+    EXPECT_EQ(f.distance, exact.distance);
+    o.max_saddle_fraction = 1.0;
+    EXPECT_TRUE(solver.distance(src, o).approximate);
+  }
+  {
+    const TriMesh m = hemisphere(50.0, 6.0);
+    const GeodesicSource src = source_from_plane(m, Vec3(1, 0, 0), 0.0);
+    GeodesicOptions o;
+    o.tolerance = 1e-3;
+    const GeodesicField f = geodesic_distance(m, src, o);
+    EXPECT_TRUE(f.approximate);
+    EXPECT_LT(f.num_windows, geodesic_distance(m, src).num_windows);
+  }
 }
 
 TEST(GeodesicApprox, BadToleranceIsRejected) {

@@ -32,6 +32,7 @@ GeodesicField field(const GeodesicSolver& solver, const GeodesicSource& src, boo
   GeodesicOptions o;
   o.split_sides = split;
   o.tolerance = tol;
+  o.max_saddle_fraction = 1.0;
   return solver.distance(src, o);
 }
 

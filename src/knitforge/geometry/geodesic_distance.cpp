@@ -334,11 +334,13 @@ GeodesicField GeodesicSolver::distance(const GeodesicSource& source, const Geode
             "be >= 0 and sum to 1",
             p.face, b[0], b[1], b[2]));
     }
+  const double tolerance =
+      options.tolerance > 0.0 && geometry_->saddle_fraction <= options.max_saddle_fraction ? options.tolerance : 0.0;
   RawField raw;
-  if (!(options.split_sides && !source.vertex_side.empty() &&
-        split_run(*geometry_, source, options.tolerance, raw)))
-    raw = single_run(*geometry_, source, options.tolerance);
+  if (!(options.split_sides && !source.vertex_side.empty() && split_run(*geometry_, source, tolerance, raw)))
+    raw = single_run(*geometry_, source, tolerance);
   GeodesicField field;
+  field.approximate = tolerance > 0.0;
   field.distance = std::move(raw.distance);
   field.num_windows = raw.num_windows;
   field.split_sides = raw.split;

@@ -151,6 +151,13 @@ GeodesicGeometry build_geodesic_geometry(const TriMesh& mesh) {
     const double need = boundary ? std::numbers::pi : 2.0 * std::numbers::pi;
     g.emits[v] = degenerate[v] || angle[v] > need + tol;
   }
+  int interior = 0, interior_emitting = 0;
+  for (int v = 0; v < nv; ++v) {
+    if (g.he.is_isolated_vertex(v) || g.is_boundary[v]) continue;
+    ++interior;
+    interior_emitting += g.emits[v] ? 1 : 0;
+  }
+  g.saddle_fraction = interior > 0 ? static_cast<double>(interior_emitting) / interior : 0.0;
   std::vector<char> flat(nv, 0);
   for (int v = 0; v < nv; ++v)
     flat[v] = !g.he.is_isolated_vertex(v) && !g.is_boundary[v] &&

@@ -86,6 +86,9 @@ struct GeodesicGeometry {
   std::vector<char> mergeable;
   double scale = 1.0;  ///< bounding-box diagonal (mm)
   double eps = 0.0;    ///< absolute distance tolerance (1e-11 scale)
+  /// Fraction of the interior vertices that emit (saddles, vertices at
+  /// degenerate faces); 0 when there are no interior vertices.
+  double saddle_fraction = 0.0;
 };
 
 /// Builds the geometry. \throw TopologyError from build_halfedges();

@@ -56,6 +56,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   d.field = field.distance;
   d.field_signed = field.is_signed;
   d.field_windows = field.num_windows;
+  d.field_approximate = field.approximate;
   d.seconds.field = t.seconds();
 
   stage("wale curves");

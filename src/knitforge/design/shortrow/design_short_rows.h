@@ -63,6 +63,7 @@ struct ShortRowDesign {
   std::vector<double> field;  ///< per vertex of the input surface (mm)
   bool field_signed = false;
   size_t field_windows = 0;
+  bool field_approximate = false;  ///< GeodesicField::approximate
   WaleCurves wales;        ///< includes the surface after cuts
   StitchMesh stitch_mesh;  ///< the designed stitch mesh (courses set)
   KnittingMap map;
