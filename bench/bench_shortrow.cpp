@@ -86,8 +86,8 @@ void BM_ShortRowMannequin125x100(benchmark::State& state) {
 }  // namespace
 
 // Argument: 0 = design only, 1 = with the evaluation (relaxation, alignment).
-BENCHMARK(BM_ShortRowHemisphere)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ShortRowMannequin3x2)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ShortRowMannequin125x100)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShortRowHemisphere)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ShortRowMannequin3x2)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ShortRowMannequin125x100)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

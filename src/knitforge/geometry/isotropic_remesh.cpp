@@ -107,7 +107,7 @@ TriMesh isotropic_remesh(const TriMesh& mesh, const RemeshOptions& options) {
     }
   }
   const SurfaceReport input_report = validate_surface(mesh);
-  require_valid_surface(mesh, "isotropic_remesh input");
+  if (!input_report.ok()) require_valid_surface(mesh, "isotropic_remesh input");  // throws, saying why
   const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
   const auto loops = he.boundary_loops();
 
