@@ -62,6 +62,22 @@ double non_planarity(const std::vector<Vec3>& pts) {
   return worst;
 }
 
+// A 5 x 4 knit rectangle bent in z.
+StitchMesh bent_rectangle() {
+  StitchMesh bent = map_to_stitch_mesh_topology(parse_map({"KKKKK", "KKKKK", "KKKKK", "KKKKK"}), kP);
+  for (Vec3& p : bent.vertices) p.z() = 0.02 * (p.x() - 8) * (p.x() - 8) + 0.5 * std::sin(p.y());
+  return bent;
+}
+
+// Relaxation from the given geometry, run to convergence.
+RelaxOptions to_convergence() {
+  RelaxOptions ro;
+  ro.warm_up = 0;
+  ro.max_iterations = 5000;
+  ro.tolerance = 1e-14;
+  return ro;
+}
+
 }  // namespace
 
 TEST(RelaxStitchMesh, IdealShapes) {
@@ -115,13 +131,8 @@ TEST(RelaxStitchMesh, BentRectangleRelaxesToRigidStitches) {
   // Start from a rectangle bent in z (no warm-up). Quads may hinge along
   // whole courses or wales at no cost, so the result need not be flat, but
   // every stitch must become its ideal rectangle again.
-  const StitchMesh flat = map_to_stitch_mesh_topology(parse_map({"KKKKK", "KKKKK", "KKKKK", "KKKKK"}), kP);
-  StitchMesh bent = flat;
-  for (Vec3& p : bent.vertices) p.z() = 0.02 * (p.x() - 8) * (p.x() - 8) + 0.5 * std::sin(p.y());
-  RelaxOptions ro;
-  ro.warm_up = 0;
-  ro.max_iterations = 5000;
-  ro.tolerance = 1e-14;
+  const StitchMesh bent = bent_rectangle();
+  RelaxOptions ro = to_convergence();
   const RelaxResult r = relax_stitch_mesh(bent, kP, ro);
   EXPECT_LE(edge_length_error(r.mesh, kP), 1e-3);
   for (const Stitch& s : r.mesh.stitches) {
@@ -164,13 +175,8 @@ TEST(RelaxStitchMesh, BendingMakesTheRestShapeOfAFlatFabricFlat) {
   // Without bending, a bent knit-only rectangle relaxes to rigid stitches
   // but keeps (part of) its bend, since folds are free; with bending it
   // relaxes all the way back to a plane.
-  const StitchMesh flat = map_to_stitch_mesh_topology(parse_map({"KKKKK", "KKKKK", "KKKKK", "KKKKK"}), kP);
-  StitchMesh bent = flat;
-  for (Vec3& p : bent.vertices) p.z() = 0.02 * (p.x() - 8) * (p.x() - 8) + 0.5 * std::sin(p.y());
-  RelaxOptions ro;
-  ro.warm_up = 0;
-  ro.max_iterations = 5000;
-  ro.tolerance = 1e-14;
+  const StitchMesh bent = bent_rectangle();
+  RelaxOptions ro = to_convergence();
   const RelaxResult free_folds = relax_stitch_mesh(bent, kP, ro);
   ro.bending = 0.1;
   const RelaxResult stiff = relax_stitch_mesh(bent, kP, ro);

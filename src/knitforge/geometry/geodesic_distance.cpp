@@ -323,17 +323,7 @@ GeodesicField GeodesicSolver::distance(const GeodesicSource& source, const Geode
         options.tolerance));
   // Validate every source point before any side analysis reads them.
   for (const auto& line : source.polylines)
-    for (const SurfacePoint& p : line) {
-      if (p.face < 0 || p.face >= mesh.num_faces())
-        throw InvalidInput(fmt::format("geodesic source: surface point in face {} but the mesh has {} faces",
-                                       p.face, mesh.num_faces()));
-      const Vec3& b = p.bary;
-      if (!b.allFinite() || b.minCoeff() < 0.0 || std::abs(b.sum() - 1.0) > 1e-9)
-        throw InvalidInput(fmt::format(
-            "geodesic source: surface point in face {} has barycentric coordinates ({}, {}, {}); they must "
-            "be >= 0 and sum to 1",
-            p.face, b[0], b[1], b[2]));
-    }
+    for (const SurfacePoint& p : line) detail::check_surface_point(mesh, p);
   const double tolerance =
       options.tolerance > 0.0 && geometry_->saddle_fraction <= options.max_saddle_fraction ? options.tolerance : 0.0;
   RawField raw;

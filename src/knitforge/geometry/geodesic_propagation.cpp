@@ -851,8 +851,20 @@ void GeodesicPropagation::seed_face(int f, const Vec3& bp, const Vec3& bq, bool 
   }
 }
 
-void GeodesicPropagation::check_point(const SurfacePoint& sp) const {
-  const TriMesh& mesh = *g_.mesh;
+void GeodesicPropagation::unpend(int h, int id) {
+  std::vector<PendingRef>& pend = pending_[h];
+  for (size_t i = 0; i < pend.size(); ++i) {
+    if (pend[i].id == id) {
+      pend[i] = pend.back();
+      pend.pop_back();
+      return;
+    }
+  }
+}
+
+void GeodesicPropagation::check_point(const SurfacePoint& sp) const { check_surface_point(*g_.mesh, sp); }
+
+void check_surface_point(const TriMesh& mesh, const SurfacePoint& sp) {
   if (sp.face < 0 || sp.face >= mesh.num_faces())
     throw InvalidInput(fmt::format("geodesic source: surface point in face {} but the mesh has {} faces",
                                    sp.face, mesh.num_faces()));
@@ -980,16 +992,7 @@ void GeodesicPropagation::run() {
       Window& w = windows_[item.id];
       if (w.done) continue;
       w.done = true;
-      if (g_.mergeable[w.h]) {
-        std::vector<PendingRef>& pend = pending_[w.h];
-        for (size_t i = 0; i < pend.size(); ++i) {
-          if (pend[i].id == item.id) {
-            pend[i] = pend.back();
-            pend.pop_back();
-            break;
-          }
-        }
-      }
+      if (g_.mergeable[w.h]) unpend(w.h, item.id);
       if (!w.dead) propagate(Window(w), item.id);
       continue;
     }
@@ -1000,14 +1003,7 @@ void GeodesicPropagation::run() {
     Window& w = windows_[item.id];
     if (w.done) continue;  // a merge re-queued it with a smaller key
     w.done = true;
-    std::vector<PendingRef>& pend = pending_[w.h];
-    for (size_t i = 0; i < pend.size(); ++i) {
-      if (pend[i].id == item.id) {
-        pend[i] = pend.back();
-        pend.pop_back();
-        break;
-      }
-    }
+    unpend(w.h, item.id);
     propagate(Window(w), item.id);
   }
 }

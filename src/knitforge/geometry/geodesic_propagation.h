@@ -95,6 +95,10 @@ struct GeodesicGeometry {
 /// InvalidInput for non-finite coordinates or an empty mesh.
 GeodesicGeometry build_geodesic_geometry(const TriMesh& mesh);
 
+/// \throw InvalidInput when `p` is not a point of `mesh` (face out of range,
+/// barycentric coordinates not >= 0 summing to 1).
+void check_surface_point(const TriMesh& mesh, const SurfacePoint& p);
+
 enum class Origin : char { None, Seed, Window, Vertex, Edge };
 
 struct Window {
@@ -215,6 +219,8 @@ class GeodesicPropagation {
 
   void seed_face(int f, const Vec3& bp, const Vec3& bq, bool point, const std::vector<Vec2>& cons);
   void check_point(const SurfacePoint& p) const;
+  /// Removes window `id` from the merge candidates of half-edge h.
+  void unpend(int h, int id);
   void update_vertex(int v, double d, Origin origin, int id);
   bool prepare(Window& w) const;  // clamps the interval, sets the key; false when empty
   void push_window(const Window& w);

@@ -147,6 +147,33 @@ class LittleEndianSink {
 
 double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
+/// The JSON chunk of a GLB with one buffer (the BIN chunk of `bin_length`
+/// bytes), padded with spaces to 4 bytes; `total` gets the file size.
+/// \throw InvalidInput when the file would exceed the 4 GiB a GLB holds
+///        (`what` is what needs the bytes, `advice` what to do).
+std::string glb_json_chunk(const std::string& path, const nlohmann::json& scene_nodes, const nlohmann::json& nodes,
+                           const nlohmann::json& meshes, const nlohmann::json& materials,
+                           const nlohmann::json& accessors, const nlohmann::json& views, uint64_t bin_length,
+                           std::string_view what, std::string_view advice, uint64_t& total) {
+  const nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
+                              {"scene", 0},
+                              {"scenes", {{{"nodes", scene_nodes}}}},
+                              {"nodes", nodes},
+                              {"meshes", meshes},
+                              {"materials", materials},
+                              {"accessors", accessors},
+                              {"bufferViews", views},
+                              {"buffers", {{{"byteLength", bin_length}}}}};
+  std::string json = doc.dump();
+  while (json.size() % 4 != 0) json.push_back(' ');
+  total = 12 + 8 + json.size() + 8 + bin_length;
+  if (total > std::numeric_limits<uint32_t>::max()) {
+    throw InvalidInput(fmt::format("{}: the {} need {} bytes, more than the 4 GiB a GLB file holds; {}", path,
+                                   what, total, advice));
+  }
+  return json;
+}
+
 }  // namespace
 
 uint8_t srgb_to_linear_byte(uint8_t c) {
@@ -256,24 +283,9 @@ void write_glb(const std::string& path, std::span<const RenderMesh> meshes) {
     scene_nodes.push_back(i);
   }
   const uint64_t bin_length = off;  // every part is a multiple of 4 bytes
-  nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
-                        {"scene", 0},
-                        {"scenes", {{{"nodes", scene_nodes}}}},
-                        {"nodes", nodes},
-                        {"meshes", gmeshes},
-                        {"materials", materials},
-                        {"accessors", accessors},
-                        {"bufferViews", views},
-                        {"buffers", {{{"byteLength", bin_length}}}}};
-  std::string json = doc.dump();
-  while (json.size() % 4 != 0) json.push_back(' ');
-  const uint64_t total = 12 + 8 + json.size() + 8 + bin_length;
-  if (total > std::numeric_limits<uint32_t>::max()) {
-    throw InvalidInput(
-        fmt::format("{}: the meshes need {} bytes, more than the 4 GiB a GLB file holds; write "
-                    "fewer or coarser meshes",
-                    path, total));
-  }
+  uint64_t total = 0;
+  const std::string json = glb_json_chunk(path, scene_nodes, nodes, gmeshes, materials, accessors, views, bin_length,
+                                          "meshes", "write fewer or coarser meshes", total);
 
   write_file_atomically(
       path,
@@ -613,24 +625,9 @@ YarnGlbSummary write_yarn_glb(const std::string& path, const YarnModel& yarn, co
     nodes.push_back({{"name", l.name}, {"mesh", m}});
     scene_nodes.push_back(m);
   }
-  const nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
-                              {"scene", 0},
-                              {"scenes", {{{"nodes", scene_nodes}}}},
-                              {"nodes", nodes},
-                              {"meshes", gmeshes},
-                              {"materials", materials},
-                              {"accessors", accessors},
-                              {"bufferViews", views},
-                              {"buffers", {{{"byteLength", bin_length}}}}};
-  std::string json = doc.dump();
-  while (json.size() % 4 != 0) json.push_back(' ');
-  const uint64_t total = 12 + 8 + json.size() + 8 + bin_length;
-  if (total > std::numeric_limits<uint32_t>::max()) {
-    throw InvalidInput(
-        fmt::format("{}: the tubes need {} bytes, more than the 4 GiB a GLB file holds; use a coarser tube "
-                    "detail (larger ring spacing, fewer vertices per ply)",
-                    path, total));
-  }
+  uint64_t total = 0;
+  std::string json = glb_json_chunk(path, scene_nodes, nodes, gmeshes, materials, accessors, views, bin_length, "tubes",
+                                    "use a coarser tube detail (larger ring spacing, fewer vertices per ply)", total);
   // where each slot's marker (with its quotes) is in the JSON text
   // (names are "yarn <id>", so the only '"~' in the text are the markers)
   std::vector<size_t> slot_at(slots, std::string::npos);
