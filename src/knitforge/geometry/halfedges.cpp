@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/util/counting_sort.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
@@ -66,26 +67,18 @@ Halfedges build_halfedges(int num_vertices, std::span<const int> face_start,
   }
 
   // Pair half-edges by sorting undirected edge keys (min vertex, max vertex,
-  // half-edge): two stable counting-sort passes over the vertex range, by
-  // the max vertex then by the min one, give the order a comparison sort of
-  // the keys would, in linear time.
+  // half-edge): by the max vertex, then stably by the min one (linear time,
+  // the order a comparison sort of the keys gives).
   std::vector<std::pair<uint64_t, int>> keys(nh);
-  {
-    std::vector<int> count(static_cast<size_t>(num_vertices) + 1);
-    std::vector<int> by_max(nh);
-    auto lo = [&](int h) { return std::min(m.from_[h], m.to_[h]); };
-    auto hi = [&](int h) { return std::max(m.from_[h], m.to_[h]); };
-    for (int h = 0; h < nh; ++h) ++count[hi(h) + 1];
-    for (int v = 0; v < num_vertices; ++v) count[v + 1] += count[v];
-    for (int h = 0; h < nh; ++h) by_max[count[hi(h)]++] = h;
-    std::fill(count.begin(), count.end(), 0);
-    for (int h = 0; h < nh; ++h) ++count[lo(h) + 1];
-    for (int v = 0; v < num_vertices; ++v) count[v + 1] += count[v];
-    for (const int h : by_max) {
-      const uint64_t a = static_cast<uint32_t>(lo(h)), b = static_cast<uint32_t>(hi(h));
-      keys[count[lo(h)]++] = {(a << 32) | b, h};
-    }
+  for (int h = 0; h < nh; ++h) {
+    const uint64_t a = static_cast<uint32_t>(std::min(m.from_[h], m.to_[h]));
+    const uint64_t b = static_cast<uint32_t>(std::max(m.from_[h], m.to_[h]));
+    keys[h] = {(a << 32) | b, h};
   }
+  counting_sort_by(keys, num_vertices, [](const std::pair<uint64_t, int>& k) {
+    return static_cast<int>(k.first & 0xffffffffu);
+  });
+  counting_sort_by(keys, num_vertices, [](const std::pair<uint64_t, int>& k) { return static_cast<int>(k.first >> 32); });
   int edge_count = 0;
   for (int i = 0; i < nh;) {
     int j = i + 1;
