@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <utility>
 
 #include <fmt/core.h>
 
+#include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/geometry/shape_up.h"
 #include "knitforge/util/errors.h"
 
@@ -127,21 +126,17 @@ RelaxResult relax_stitch_mesh(const StitchMesh& mesh, const KnitParams& params, 
   }
 
   if (options.bending > 0) {
-    // Stitches sharing an edge (each undirected edge used by exactly two).
-    std::map<std::pair<int, int>, int> first_user;
-    for (int s = 0; s < mesh.num_stitches(); ++s) {
-      const Stitch& st = mesh.stitches[s];
-      const int n = st.corners();
-      for (int k = 0; k < n; ++k) {
-        const int u = st.v[k], v = st.v[(k + 1) % n];
-        const auto key = std::minmax(u, v);
-        const auto [it, inserted] = first_user.emplace(key, s);
-        if (inserted) continue;
-        const int o = it->second;
-        const double w = options.bending * 0.5 * (area[static_cast<int>(st.type)] +
-                                                  area[static_cast<int>(mesh.stitches[o].type)]);
-        add_hinge(mesh, o, s, u, v, shapes, w, poly);
-      }
+    // One hinge per pair of stitches sharing an edge, in the order the
+    // half-edge of the later stitch comes.
+    const StitchAdjacency adjacency(mesh);
+    const Halfedges& he = adjacency.halfedges();
+    for (int h = 0; h < he.num_halfedges(); ++h) {
+      const int o = he.opposite(h);
+      if (o < 0 || o > h) continue;
+      const int first = he.face(o), second = he.face(h);
+      const double w = options.bending * 0.5 * (area[static_cast<int>(mesh.stitches[first].type)] +
+                                                area[static_cast<int>(mesh.stitches[second].type)]);
+      add_hinge(mesh, first, second, he.from(h), he.to(h), shapes, w, poly);
     }
   }
 
