@@ -16,6 +16,11 @@ namespace knitforge {
 
 namespace {
 
+/// Horizontal when `d` runs more along the pattern's x axis than along y.
+DartOrientation orientation_along(const Vec2& d) {
+  return std::abs(d.x()) >= std::abs(d.y()) ? DartOrientation::Horizontal : DartOrientation::Vertical;
+}
+
 double dist_to_darts(const Flattening& f, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& d : f.darts) {
@@ -130,8 +135,7 @@ std::optional<DartHint> propose_dart(const Flattening& f, const DartHintOptions&
     if (dist_to_darts(f, tip) < 0.5 * exclusion) return std::nullopt;
     const Vec2 dir = centre - f.uv[b];
     hint.spec.type = DartType::OneEnd;
-    hint.spec.orientation =
-        std::abs(dir.x()) >= std::abs(dir.y()) ? DartOrientation::Horizontal : DartOrientation::Vertical;
+    hint.spec.orientation = orientation_along(dir);
     hint.spec.points = {DartWaypoint::at_position(m.vertices[b]), DartWaypoint::at_position(tip)};
     hint.score = vs[b];
     hint.reason = fmt::format(
@@ -169,8 +173,7 @@ std::optional<DartHint> propose_dart(const Flattening& f, const DartHintOptions&
       const auto p3 = pattern_points_to_surface(m, f.uv, {a2, b2});
       if (dist_to_darts(f, p3[0]) < 0.5 * exclusion || dist_to_darts(f, p3[1]) < 0.5 * exclusion) continue;
       hint.spec.type = DartType::TwoEnd;
-      hint.spec.orientation = std::abs(along.x()) >= std::abs(along.y()) ? DartOrientation::Horizontal
-                                                                         : DartOrientation::Vertical;
+      hint.spec.orientation = orientation_along(along);
       hint.spec.points = {DartWaypoint::at_position(p3[0]), DartWaypoint::at_position(m.vertices[s]),
                           DartWaypoint::at_position(p3[1])};
       hint.score = vs[s];
