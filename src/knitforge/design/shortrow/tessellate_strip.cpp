@@ -309,6 +309,12 @@ std::string_view name(StripOperator op) {
   return "unknown";
 }
 
+Vec3 wale_tangent(const std::vector<Vec3>& w, size_t k) {
+  const size_t lo = k > 1 ? k - 2 : 0;
+  const size_t hi = std::min(k + 2, w.size() - 1);
+  return w[hi] - w[lo];
+}
+
 StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
                                    const StripOptions& o) {
   const int strip = o.strip_index;
@@ -346,14 +352,10 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
   // Bijective closest pairs among the even samples, counting only samples
   // where the two wales run the same way (a wale that folds back next to
   // the other, around a cut, must not pair its returning half).
-  auto tangent = [](const std::vector<Vec3>& w, int k) {
-    const size_t lo = static_cast<size_t>(std::max(k - 2, 0));
-    const size_t hi = std::min(static_cast<size_t>(k) + 2, w.size() - 1);
-    return Vec3(w[hi] - w[lo]);
-  };
   auto dist2 = [&](int i, int j) {
-    const double d = (a[static_cast<size_t>(2 * i)] - b[static_cast<size_t>(2 * j)]).squaredNorm();
-    return tangent(a, 2 * i).dot(tangent(b, 2 * j)) > 0.0 ? d : kInf;
+    const size_t ka = static_cast<size_t>(2 * i), kb = static_cast<size_t>(2 * j);
+    const double d = (a[ka] - b[kb]).squaredNorm();
+    return wale_tangent(a, ka).dot(wale_tangent(b, kb)) > 0.0 ? d : kInf;
   };
   std::vector<int> near_b(static_cast<size_t>(na + 1), -1), near_a(static_cast<size_t>(nb + 1), -1);
   for (int i = 0; i <= na; ++i) {

@@ -193,6 +193,14 @@ struct StripTessellation {
   int lambda_growths = 0;    ///< how often lambda grew by 10 %
 };
 
+/// Direction of a sampled wale w at sample k: the chord from sample k - 2
+/// to sample k + 2 (clamped at the ends). Two segments each way, so that an
+/// end extension poking across a cut (whose direction is unrelated to the
+/// wale's) does not decide it alone. Samples of neighbouring wales whose
+/// directions disagree lie on the two sides of a cut or narrow notch and are
+/// never paired. \pre 0 <= k < w.size().
+Vec3 wale_tangent(const std::vector<Vec3>& w, size_t k);
+
 /// Tessellates the strip between the left wale a and the right wale b.
 /// \pre a.size() and b.size() odd and >= 3 (an even number >= 2 of
 ///      segments), finite points, sw > 0, sh > 0, mu >= 0, lambda > 0.

@@ -13,22 +13,12 @@ namespace knitforge {
 
 namespace {
 
-/// Direction of wale w at sample k: the chord from sample k-2 to sample
-/// k+2 (clamped at the ends). Two segments each way, so that an end
-/// extension poking across a cut (whose direction is unrelated to the
-/// wale's) does not decide it alone.
-Vec3 tangent(const std::vector<Vec3>& w, size_t k) {
-  const size_t lo = k > 1 ? k - 2 : 0;
-  const size_t hi = std::min(k + 2, w.size() - 1);
-  return w[hi] - w[lo];
-}
-
 /// True when the wales run the same way at the two samples (the wale
 /// directions agree). Samples of neighbouring wales that run against each
 /// other lie on the two sides of a cut (or of a narrow notch) and must not
 /// be paired: a strip between them would cross it.
 bool same_way(const std::vector<Vec3>& w, size_t k, const std::vector<Vec3>& v, size_t m) {
-  return tangent(w, k).dot(tangent(v, m)) > 0.0;
+  return wale_tangent(w, k).dot(wale_tangent(v, m)) > 0.0;
 }
 
 /// For every even sample of `from`, the piece of `to` holding the nearest
