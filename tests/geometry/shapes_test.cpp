@@ -1,9 +1,12 @@
 #include "knitforge/geometry/shapes.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -77,6 +80,72 @@ TEST(Shapes, Hemisphere) {
   const BoundingBox box = bounding_box(m);
   EXPECT_NEAR(box.max.z(), r, 0.01 * r);
   EXPECT_EQ(box.min.z(), 0.0);
+}
+
+// Smallest and largest interior angle (degrees) over all triangles.
+std::pair<double, double> angle_range(const TriMesh& m) {
+  double lo = 180.0, hi = 0.0;
+  for (const auto& t : m.faces) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = m.vertices[t[k]], b = m.vertices[t[(k + 1) % 3]], c = m.vertices[t[(k + 2) % 3]];
+      const double cosine = std::clamp((b - a).normalized().dot((c - a).normalized()), -1.0, 1.0);
+      const double angle = std::acos(cosine) * 180.0 / kPi;
+      lo = std::min(lo, angle);
+      hi = std::max(hi, angle);
+    }
+  }
+  return {lo, hi};
+}
+
+// The hemisphere is built from rings of latitude (shapes.h): every edge in
+// [0.8 l, 1.4 l] and every angle in [38°, 94°] at any resolution r/l >= 4,
+// the pole a vertex, the boundary round(2πr/l) vertices on the circle.
+TEST(Shapes, HemisphereRingMeshQualityAtEveryResolution) {
+  for (const double r : {10.0, 75.0}) {
+    for (const double ratio : {4.0, 4.4, 5.1, 6.0, 7.3, 8.8, 10.5, 13.0, 16.2, 21.0, 27.5, 30.0}) {
+      const double edge = r / ratio;
+      const TriMesh m = hemisphere(r, edge);
+      SCOPED_TRACE(::testing::Message() << "r " << r << ", r/l " << ratio);
+      ASSERT_TRUE(validate_surface(m).is_disk);
+      const std::vector<double> lengths = edge_lengths(m);
+      const auto [shortest, longest] = std::minmax_element(lengths.begin(), lengths.end());
+      EXPECT_GE(*shortest, 0.8 * edge);
+      EXPECT_LE(*longest, 1.4 * edge);
+      const auto [lo, hi] = angle_range(m);
+      EXPECT_GE(lo, 38.0);
+      EXPECT_LE(hi, 94.0);
+      EXPECT_TRUE(has_vertex(m, Vec3(0.0, 0.0, r)));
+      const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+      const auto loops = he.boundary_loops();
+      ASSERT_EQ(loops.size(), 1u);
+      EXPECT_EQ(static_cast<long>(loops[0].size()), std::lround(2.0 * kPi * r / edge));
+      for (const Vec3& p : m.vertices) ASSERT_NEAR(p.norm(), r, 1e-12 * r);
+      for (int f = 0; f < m.num_faces(); ++f) {
+        const auto& t = m.faces[f];
+        ASSERT_GT(face_normal(m, f).dot(m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]), 0.0);
+      }
+    }
+  }
+  // The hemisphere: r 75, l 2.5 (the CLI default). The vertex density
+  // is that of equilateral triangles of side l: 2πr² / (√3/2 l²) vertices.
+  const double r = 75.0, edge = 2.5;
+  const TriMesh m = hemisphere(r, edge);
+  EXPECT_NEAR(m.num_vertices(), 2.0 * kPi * r * r / (0.5 * std::sqrt(3.0) * edge * edge),
+              0.02 * m.num_vertices());
+  const std::vector<double> lengths = edge_lengths(m);
+  double sum = 0.0;
+  for (double l : lengths) sum += l;
+  EXPECT_NEAR(sum / lengths.size(), edge, 0.05 * edge);
+  EXPECT_NEAR(total_area(m), 2.0 * kPi * r * r, 0.002 * 2.0 * kPi * r * r);
+  // Exactly mirror-symmetric about x = 0 (the usual source plane of short
+  // rows): the mirror image of every vertex is a vertex, bit for bit.
+  std::set<std::array<double, 3>> points;
+  for (const Vec3& p : m.vertices) points.insert({p.x(), p.y(), p.z()});
+  int unmatched = 0;
+  for (const Vec3& p : m.vertices) unmatched += !points.count({-p.x(), p.y(), p.z()});
+  EXPECT_EQ(unmatched, 0);
+  const BoundingBox box = bounding_box(m);
+  EXPECT_EQ(box.min.x(), -box.max.x());
 }
 
 TEST(Shapes, FlatDisk) {

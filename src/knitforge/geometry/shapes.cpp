@@ -176,6 +176,95 @@ TriMesh height_field_disk(double r, double edge, int iterations,
   return isotropic_remesh(m, o);
 }
 
+// The hemisphere of radius r built directly from rings of latitude (see
+// hemisphere() in shapes.h): ring k (0..K) at polar angle θ_k = k π/(2K),
+// K = round((π r / 2) / (√3/2 l)) so that neighbouring rings are the height
+// of an equilateral triangle of side l apart; ring 0 is the pole, ring K the
+// equator (z = 0 exactly). Ring k has max(6, round(2π r sin θ_k / l))
+// vertices, uniformly spaced in longitude: odd rings have a vertex at
+// longitude 90° (on the +y axis), even rings are turned by half of their
+// spacing from there, so that rings of equal count are staggered
+// (equilateral triangles) and every ring is mirror-symmetric about the plane
+// x = 0. Neighbouring rings are joined by the usual ring-marching
+// triangulation that always takes the shorter diagonal.
+TriMesh hemisphere_rings(double r, double edge) {
+  const double spacing = 0.5 * std::sqrt(3.0) * edge;
+  const int rings = std::max(2, static_cast<int>(std::lround(0.5 * kPi * r / spacing)));
+  const double dtheta = 0.5 * kPi / rings;
+  std::vector<int> start(rings + 1), count(rings + 1);
+  std::vector<double> phase(rings + 1, 0.0);  // longitude of the ring's vertex 0
+  start[0] = 0;
+  count[0] = 1;
+  long total = 1;
+  for (int k = 1; k <= rings; ++k) {
+    const double s = k == rings ? 1.0 : std::sin(k * dtheta);
+    count[k] = std::max(6, static_cast<int>(std::lround(2.0 * kPi * r * s / edge)));
+    start[k] = static_cast<int>(total);
+    total += count[k];
+    phase[k] = 0.5 * kPi + (k % 2 == 1 ? 0.0 : kPi / count[k]);
+  }
+  TriMesh m;
+  m.vertices.reserve(total);
+  m.faces.reserve(2 * total);
+  m.vertices.push_back(Vec3(0.0, 0.0, r));
+  for (int k = 1; k <= rings; ++k) {
+    const bool equator = k == rings;
+    const double s = equator ? 1.0 : std::sin(k * dtheta), c = equator ? 0.0 : std::cos(k * dtheta);
+    // Longitude 90° + a_j, a_j = offset + 2πj/n; the mirror image (x -> -x)
+    // of vertex j is vertex n - j (offset 0) or n - 1 - j (offset π/n), and
+    // is copied with x negated so that the symmetry is exact.
+    const int n = count[k];
+    const bool odd = k % 2 == 1;
+    for (int j = 0; j < n; ++j) {
+      const int mirror = odd ? (n - j) % n : n - 1 - j;
+      if (mirror < j) {
+        const Vec3 q = m.vertices[start[k] + mirror];
+        m.vertices.push_back(Vec3(-q.x(), q.y(), q.z()));
+        continue;
+      }
+      const double a = (odd ? 0.0 : kPi / n) + 2.0 * kPi * j / n;
+      m.vertices.push_back(Vec3(mirror == j ? 0.0 : -r * s * std::sin(a), r * s * std::cos(a), r * c));
+    }
+  }
+  for (int j = 0; j < count[1]; ++j) m.faces.push_back({0, start[1] + j, start[1] + (j + 1) % count[1]});
+  for (int k = 1; k < rings; ++k) {
+    // Longitudes in turns after inner vertex 0: inner vertex i at i / nin,
+    // the j-th outer vertex from j0 (the first at or after inner vertex 0)
+    // at t0 + j / nout. The edge between inner vertex 0 and outer vertex j0
+    // opens and closes the strip.
+    const int nin = count[k], nout = count[k + 1];
+    double t0 = (phase[k + 1] - phase[k]) / (2.0 * kPi);
+    t0 -= std::floor(t0);
+    int j0 = static_cast<int>(std::ceil(-t0 * nout - 1e-9));
+    t0 += static_cast<double>(j0) / nout;
+    j0 = ((j0 % nout) + nout) % nout;
+    auto in = [&](int i) { return start[k] + i % nin; };
+    auto out = [&](int j) { return start[k + 1] + (j0 + j) % nout; };
+    int i = 0, j = 0;
+    while (i < nin || j < nout) {
+      bool advance_out = i == nin;
+      if (i < nin && j < nout) {
+        const double d_out = (m.vertices[in(i)] - m.vertices[out(j + 1)]).squaredNorm();
+        const double d_in = (m.vertices[in(i + 1)] - m.vertices[out(j)]).squaredNorm();
+        // Equal diagonals (up to rounding): advance the ring whose next vertex
+        // comes first in longitude, so that the choice does not depend on the
+        // last bits of sin and cos.
+        advance_out = std::abs(d_out - d_in) <= 1e-9 * (d_out + d_in)
+                          ? t0 + (j + 1.0) / nout <= (i + 1.0) / nin
+                          : d_out < d_in;
+      }
+      if (advance_out) {
+        m.faces.push_back({in(i), out(j), out(j + 1)});
+        ++j;
+      } else {
+        m.faces.push_back({in(i), out(j), in(i + 1)});
+        ++i;
+      }
+    }
+  }
+  return m;
+}
+
 }  // namespace
 
 double triple_peak_height(double x, double y) {
@@ -195,31 +284,7 @@ double monkey_saddle_height(double x, double y) {
 TriMesh hemisphere(double radius, double edge_length) {
   check_size("hemisphere", "radius", radius);
   check_edge("hemisphere", edge_length, radius, 2.0 * kPi * radius * radius);
-  const double r = radius;
-  const int rings = cells(0.5 * kPi * r, edge_length);
-  auto theta = [&](int k) { return k == rings ? 0.5 * kPi : 0.5 * kPi * k / rings; };
-  TriMesh m = ring_mesh(
-      rings,
-      [&](int k) { return static_cast<int>(std::lround(2.0 * kPi * r * std::sin(theta(k)) / edge_length)); },
-      [&](int k, double phi) {
-        const double t = theta(k);
-        const double s = k == rings ? 1.0 : std::sin(t);
-        return Vec3(r * s * std::cos(phi), r * s * std::sin(phi), k == rings ? 0.0 : r * std::cos(t));
-      });
-  RemeshOptions o;
-  o.target_edge_length = edge_length;
-  o.iterations = 4;
-  o.boundary_corner_angle_deg = 0.0;
-  o.project = [r](const Vec3& p) {
-    Vec3 q(p.x(), p.y(), std::max(p.z(), 0.0));
-    const double n = q.norm();
-    return n > 0.0 ? Vec3(r * q / n) : Vec3(0.0, 0.0, r);
-  };
-  o.project_boundary = [r](const Vec3& p) {
-    const double rho = std::hypot(p.x(), p.y());
-    return rho > 0.0 ? Vec3(r * p.x() / rho, r * p.y() / rho, 0.0) : Vec3(r, 0.0, 0.0);
-  };
-  return isotropic_remesh(m, o);
+  return hemisphere_rings(radius, edge_length);
 }
 
 TriMesh triple_peak(double edge_length) {
