@@ -321,6 +321,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                           {"wales", d.wales.num_wales()},
                           {"wale_levels", static_cast<int>(d.wales.values.size())},
                           {"dropped_wale_pieces", d.wales.dropped_pieces},
+                          {"shifted_wale_levels", static_cast<int>(d.wales.shifted_levels.size())},
                           {"strips", d.strips},
                           {"unpaired_wale_pieces", d.unpaired_pieces},
                           {"lambda_growths", d.lambda_growths},

@@ -2,6 +2,7 @@
 // strips between many wales, the two post-processing operators, course
 // ordering, and end-to-end knittability on the inputs of the issue.
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -223,6 +224,54 @@ TEST(DesignShortRows, TriplePeakAcrossItsPeaksNeedsCuts) {
     EXPECT_GT(c.length, 0.0);
     EXPECT_GT(std::abs(c.extremum.x()), 20.0) << "cuts start at the side peaks";
   }
+}
+
+TEST(DesignShortRows, LevelsThroughASaddleOnACutAreShifted) {
+  // Built-in triple-peak, source x = 0, 3 x 2 mm: the cut behind each side
+  // peak passes a saddle of the field at about 81 mm, a multiple of sw. The
+  // level there runs along the cut's lips and breaks into pieces that
+  // cannot be paired; shifting it off the saddle makes the design knittable.
+  const TriMesh m = triple_peak();
+  const KnitParams p{3.0, 2.0};
+  const GeodesicSource src = source_from_plane(m, Vec3(1, 0, 0), 0.0);
+  ShortRowOptions o;
+  o.params = p;
+  o.evaluate = false;
+  const ShortRowDesign d = design_short_rows(m, src, o);
+  expect_knittable(d, p, 0.05);
+  EXPECT_EQ(d.unpaired_pieces, 0);
+  ASSERT_FALSE(d.wales.shifted_levels.empty());
+  const double delta = o.wales.cut_hug_fraction * p.stitch_width + edge_length_stats(d.wales.surface).mean;
+  for (const auto& [level, shift] : d.wales.shifted_levels) {
+    SCOPED_TRACE(level);
+    EXPECT_NE(shift, 0.0);
+    EXPECT_LE(std::abs(shift), o.wales.max_level_shift * p.stitch_width + 1e-12);
+    // The shifted value, and at least half a stitch width to its neighbours.
+    EXPECT_NEAR(d.wales.values[level], std::round(d.wales.values[level] / 3.0) * 3.0 + shift, 1e-9);
+    if (level > 0) {
+      EXPECT_GT(d.wales.values[level] - d.wales.values[level - 1], 0.5 * p.stitch_width);
+    }
+    // Every piece of the level leaves the neighbourhood of the cuts.
+    for (const WaleCurve& w : d.wales.wales[level]) {
+      EXPECT_DOUBLE_EQ(w.value, d.wales.values[level]);
+      double farthest = 0;
+      for (const Vec3& q : w.isocurve) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const WaleCut& c : d.wales.cuts) {
+          for (size_t k = 0; k + 1 < c.path.size(); ++k) {
+            nearest = std::min(nearest, (closest_point_on_segment(q, c.path[k], c.path[k + 1]) - q).norm());
+          }
+        }
+        farthest = std::max(farthest, nearest);
+      }
+      EXPECT_GT(farthest, delta);
+    }
+  }
+  // Without the shift the same design is not knittable.
+  o.wales.max_level_shift = 0.0;
+  const ShortRowDesign unshifted = design_short_rows(m, src, o);
+  EXPECT_TRUE(unshifted.wales.shifted_levels.empty());
+  EXPECT_FALSE(unshifted.map_check.ok() && unshifted.mesh_check.ok());
 }
 
 TEST(DesignShortRows, ApexDiffusionLowersTheShapeErrorOnTheHemisphere) {

@@ -13,6 +13,7 @@
 #include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/geometry/isocurves.h"
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/resample_polyline.h"
 #include "knitforge/geometry/split_mesh_along_path.h"
 #include "knitforge/util/errors.h"
@@ -68,6 +69,33 @@ int enclosed_extremum(const TriMesh& mesh, const Halfedges& he, const std::vecto
     if (!touches_boundary) return best;
   }
   return -1;
+}
+
+// True when every point of the curve lies within `delta` of one cut's path.
+bool hugs_a_cut(const Isocurve& curve, const std::vector<WaleCut>& cuts, double delta) {
+  for (const WaleCut& cut : cuts) {
+    bool all = true;
+    for (const Vec3& p : curve.positions) {
+      bool near = false;
+      for (size_t k = 0; k + 1 < cut.path.size() && !near; ++k) {
+        near = (closest_point_on_segment(p, cut.path[k], cut.path[k + 1]) - p).squaredNorm() <= delta * delta;
+      }
+      if (!near) {
+        all = false;
+        break;
+      }
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
+// True when a piece of the level is closed or hugs a cut.
+bool degenerate_level(const std::vector<Isocurve>& level, const std::vector<WaleCut>& cuts, double delta) {
+  for (const Isocurve& c : level) {
+    if (c.closed || hugs_a_cut(c, cuts, delta)) return true;
+  }
+  return false;
 }
 
 MeshPoint to_mesh_point(const GeodesicPathPoint& p) {
@@ -181,6 +209,32 @@ WaleCurves compute_wale_curves(const TriMesh& mesh, const std::vector<double>& f
     out.surface = opened.mesh;
     out.field = std::move(opened_field);
     out.cuts.push_back(std::move(cut));
+  }
+
+  // Levels through a saddle of F on a cut (see the header): move them by a
+  // fraction of sw until no piece runs along the cut.
+  if (!out.cuts.empty() && options.max_level_shift > 0) {
+    // A piece along a cut runs through the faces next to it: within about one
+    // edge of the cut's path (which crosses those faces) plus the allowance.
+    const double delta = options.cut_hug_fraction * sw + edge_length_stats(out.surface).mean;
+    for (size_t l = 0; l < curves.size(); ++l) {
+      if (!degenerate_level(curves[l], out.cuts, delta)) continue;
+      const double v = out.values[l];
+      const double below = l > 0 ? out.values[l - 1] : -std::numeric_limits<double>::infinity();
+      const double above = l + 1 < out.values.size() ? out.values[l + 1] : std::numeric_limits<double>::infinity();
+      const int steps = 4;
+      for (int k = 1; k <= 2 * steps; ++k) {
+        const double shift = ((k + 1) / 2) * options.max_level_shift * sw / steps * (k % 2 == 1 ? 1.0 : -1.0);
+        const double w = v + shift;
+        if (!(w - below > 0.5 * sw && above - w > 0.5 * sw)) continue;
+        std::vector<std::vector<Isocurve>> moved = extract_isocurves(out.surface, out.field, {w});
+        if (degenerate_level(moved[0], out.cuts, delta)) continue;
+        out.values[l] = w;
+        curves[l] = std::move(moved[0]);
+        out.shifted_levels.push_back({static_cast<int>(l), shift});
+        break;
+      }
+    }
   }
 
   out.wales.resize(out.values.size());

@@ -37,7 +37,24 @@
 /// to a cut then lost their partner wale. Pieces shorter than
 /// min_length_fraction x sh are dropped and counted (they are slivers where
 /// a level grazes the boundary; at most one stitch of area each).
+///
+/// Saddles on cuts: a cut from a peak to the boundary runs along the field's
+/// ridge behind the peak (where the shortest paths from the source meet), and
+/// F along it can dip to a saddle. A level at (or within rounding of) the
+/// saddle value runs along the cut's lips for a while instead of crossing
+/// the cut, breaking into pieces that bound no strip of fabric and cannot be
+/// paired (seen on the built-in triple-peak with the source x = 0 at
+/// 3 x 2 mm: level 81 mm against a saddle at about 81 mm). A level with a
+/// piece lying entirely within cut_hug_fraction x sw plus the mean edge
+/// length of the surface of a cut's path (such a piece runs through the
+/// faces the cut crosses), or with a closed piece, is therefore moved by +-k/4 x max_level_shift x sw,
+/// k = 1..4, smallest shift first, positive before negative, keeping at
+/// least sw / 2 to its neighbouring levels; the first shift whose pieces all
+/// cross the cuts is kept and recorded in shifted_levels. The wales there
+/// are up to max_level_shift x sw closer to or further from their
+/// neighbours.
 
+#include <utility>
 #include <vector>
 
 #include "knitforge/core/knit_params.h"
@@ -50,6 +67,13 @@ namespace knitforge {
 struct WaleOptions {
   /// Pieces shorter than this fraction of the stitch height are dropped.
   double min_length_fraction = 0.5;
+  /// A piece lying entirely within this fraction of the stitch width, plus
+  /// the mean edge length, of a cut's path runs along the cut (see the file
+  /// comment).
+  double cut_hug_fraction = 0.25;
+  /// Largest shift of a level that runs along a cut, as a fraction of the
+  /// stitch width (0 = never shift).
+  double max_level_shift = 0.4;
   /// At most this many cuts for closed isocurves before giving up.
   int max_cuts = 64;
   /// Wales shorter than this many stitch heights are extended at their ends
@@ -87,6 +111,8 @@ struct WaleCurves {
   std::vector<std::vector<WaleCurve>> wales;
   std::vector<WaleCut> cuts;
   int dropped_pieces = 0;  ///< pieces shorter than min_length_fraction x sh
+  /// Levels moved off a saddle on a cut: {level index, shift in mm}.
+  std::vector<std::pair<int, double>> shifted_levels;
   int num_wales() const;   ///< total number of pieces over all levels
 };
 
