@@ -331,6 +331,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                           {"support_stitches", d.courses.support_stitches},
                           {"cuts", static_cast<int>(d.wales.cuts.size())},
                           {"cut_length_mm", cut_length}};
+      report["apexes"] = {{"count", static_cast<int>(d.apex_spacing.apexes.size())},
+                          {"nearest_apex_mm", stats_json(d.apex_spacing.stats)}};
       report["field"] = {
           {"signed", d.field_signed}, {"windows", d.field_windows}, {"approximate", d.field_approximate}};
       report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};

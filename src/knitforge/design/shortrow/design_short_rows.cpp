@@ -101,6 +101,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   d.mesh_check = check_knittability(d.stitch_mesh);
   d.map_check = check_knittability(d.map, options.params);
   d.seconds.check = t.seconds();
+  d.apex_spacing = apex_spacing(d.stitch_mesh);
 
   if (options.evaluate) {
     stage("evaluation");

@@ -29,6 +29,7 @@
 #include "knitforge/design/shortrow/order_courses.h"
 #include "knitforge/design/shortrow/tessellate_wales.h"
 #include "knitforge/design/shortrow/wale_curves.h"
+#include "knitforge/evaluate/apex_spacing.h"
 #include "knitforge/evaluate/evaluate_stitch_mesh.h"
 #include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/tri_mesh.h"
@@ -73,6 +74,9 @@ struct ShortRowDesign {
   int strips = 0, unpaired_pieces = 0, lambda_growths = 0;
   double max_lambda = 0.0;
   int interior_apexes = 0;  ///< short-row-end pairs placed off the wale ends
+  /// How far apart the short-row ends of the final mesh are (what apex
+  /// diffusion controls; apex_spacing.h).
+  ApexSpacing apex_spacing;
   BoundaryApexQuadStats boundary_quads;
   CourseOrder courses;
   std::optional<StitchMeshEvaluation> evaluation;
