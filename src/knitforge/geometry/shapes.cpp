@@ -37,6 +37,26 @@ void check_edge(std::string_view shape, double edge, double smallest_dimension, 
   }
 }
 
+// Triangulates the band between two neighbouring rings, marching once
+// around both: in(i) / out(j) give
+// the vertex of the i-th inner / j-th outer step (indices wrap around, so
+// in(n_in) is in(0)). While both rings have vertices left,
+// advance_outer(i, j) chooses the next triangle: {in(i), out(j), out(j+1)}
+// when true, {in(i), out(j), in(i+1)} when false.
+template <class In, class Out, class AdvanceOuter>
+void join_rings(TriMesh& m, int n_in, int n_out, In in, Out out, AdvanceOuter advance_outer) {
+  int i = 0, j = 0;
+  while (i < n_in || j < n_out) {
+    if (i == n_in || (j < n_out && advance_outer(i, j))) {
+      m.faces.push_back({in(i), out(j), out(j + 1)});
+      ++j;
+    } else {
+      m.faces.push_back({in(i), out(j), in(i + 1)});
+      ++i;
+    }
+  }
+}
+
 // A disk-like mesh of concentric rings: ring 0 is a single centre vertex,
 // ring k (1..K) has counts[k] vertices at angles 2π(j + offset_k)/counts[k].
 // point(k, phi) gives the position. Faces are counter-clockwise when the
@@ -60,18 +80,10 @@ TriMesh ring_mesh(int rings, const std::function<int(int)>& count,
     auto angle_in = [&](int i) { return (i + offset[k]) / m_in; };
     auto angle_out = [&](int j) { return (j + offset[k + 1]) / m_out; };
     // Start both rings at their vertex of smallest angle; march by angle.
-    int i = 0, j = 0;
-    while (i < m_in || j < m_out) {
-      const int a = start[k] + i % m_in, b = start[k + 1] + j % m_out;
-      const bool advance_outer = i >= m_in || (j < m_out && angle_out(j + 1) <= angle_in(i + 1));
-      if (advance_outer) {
-        m.faces.push_back({a, b, start[k + 1] + (j + 1) % m_out});
-        ++j;
-      } else {
-        m.faces.push_back({a, b, start[k] + (i + 1) % m_in});
-        ++i;
-      }
-    }
+    join_rings(
+        m, m_in, m_out, [&](int i) { return start[k] + i % m_in; },
+        [&](int j) { return start[k + 1] + j % m_out; },
+        [&](int i, int j) { return angle_out(j + 1) <= angle_in(i + 1); });
   }
   return m;
 }
@@ -240,27 +252,15 @@ TriMesh hemisphere_rings(double r, double edge) {
     j0 = ((j0 % nout) + nout) % nout;
     auto in = [&](int i) { return start[k] + i % nin; };
     auto out = [&](int j) { return start[k + 1] + (j0 + j) % nout; };
-    int i = 0, j = 0;
-    while (i < nin || j < nout) {
-      bool advance_out = i == nin;
-      if (i < nin && j < nout) {
-        const double d_out = (m.vertices[in(i)] - m.vertices[out(j + 1)]).squaredNorm();
-        const double d_in = (m.vertices[in(i + 1)] - m.vertices[out(j)]).squaredNorm();
-        // Equal diagonals (up to rounding): advance the ring whose next vertex
-        // comes first in longitude, so that the choice does not depend on the
-        // last bits of sin and cos.
-        advance_out = std::abs(d_out - d_in) <= 1e-9 * (d_out + d_in)
-                          ? t0 + (j + 1.0) / nout <= (i + 1.0) / nin
-                          : d_out < d_in;
-      }
-      if (advance_out) {
-        m.faces.push_back({in(i), out(j), out(j + 1)});
-        ++j;
-      } else {
-        m.faces.push_back({in(i), out(j), in(i + 1)});
-        ++i;
-      }
-    }
+    join_rings(m, nin, nout, in, out, [&](int i, int j) {
+      const double d_out = (m.vertices[in(i)] - m.vertices[out(j + 1)]).squaredNorm();
+      const double d_in = (m.vertices[in(i + 1)] - m.vertices[out(j)]).squaredNorm();
+      // Equal diagonals (up to rounding): advance the ring whose next vertex
+      // comes first in longitude, so that the choice does not depend on the
+      // last bits of sin and cos.
+      return std::abs(d_out - d_in) <= 1e-9 * (d_out + d_in) ? t0 + (j + 1.0) / nout <= (i + 1.0) / nin
+                                                             : d_out < d_in;
+    });
   }
   return m;
 }
