@@ -222,17 +222,22 @@ WaleCurves compute_wale_curves(const TriMesh& mesh, const std::vector<double>& f
       const double v = out.values[l];
       const double below = l > 0 ? out.values[l - 1] : -std::numeric_limits<double>::infinity();
       const double above = l + 1 < out.values.size() ? out.values[l + 1] : std::numeric_limits<double>::infinity();
+      // Shifts of k/4 x max_level_shift x sw, smallest first, + before -.
       const int steps = 4;
-      for (int k = 1; k <= 2 * steps; ++k) {
-        const double shift = ((k + 1) / 2) * options.max_level_shift * sw / steps * (k % 2 == 1 ? 1.0 : -1.0);
-        const double w = v + shift;
-        if (!(w - below > 0.5 * sw && above - w > 0.5 * sw)) continue;
-        std::vector<std::vector<Isocurve>> moved = extract_isocurves(out.surface, out.field, {w});
-        if (degenerate_level(moved[0], out.cuts, delta)) continue;
-        out.values[l] = w;
-        curves[l] = std::move(moved[0]);
-        out.shifted_levels.push_back({static_cast<int>(l), shift});
-        break;
+      bool shifted = false;
+      for (int k = 1; k <= steps && !shifted; ++k) {
+        for (double sign : {1.0, -1.0}) {
+          const double shift = sign * k * options.max_level_shift * sw / steps;
+          const double w = v + shift;
+          if (!(w - below > 0.5 * sw && above - w > 0.5 * sw)) continue;
+          std::vector<std::vector<Isocurve>> moved = extract_isocurves(out.surface, out.field, {w});
+          if (degenerate_level(moved[0], out.cuts, delta)) continue;
+          out.values[l] = w;
+          curves[l] = std::move(moved[0]);
+          out.shifted_levels.push_back({static_cast<int>(l), shift});
+          shifted = true;
+          break;
+        }
       }
     }
   }
