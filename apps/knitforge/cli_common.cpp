@@ -126,6 +126,11 @@ bool is_stitch_mesh_ply(const std::string& path) {
   return face >= 0 && header.elements[face].find("type") >= 0;
 }
 
+nlohmann::json scalar_stats_json(const ScalarStats& s) {
+  return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
+          {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};
+}
+
 void write_report_json(const std::string& path, const nlohmann::json& report, bool print) {
   const std::string text = report.dump(2) + "\n";
   write_file_atomically(path, [&](std::ostream& os) { os << text; });

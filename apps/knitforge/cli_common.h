@@ -13,6 +13,7 @@
 #include "knitforge/core/knit_params.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/util/errors.h"
 
@@ -83,6 +84,9 @@ CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);
 /// Writes a design command's report (indented JSON) to `path` atomically
 /// and, when `print` (--json), also to stdout.
 void write_report_json(const std::string& path, const nlohmann::json& report, bool print);
+
+/// Statistics for a report: count, min, mean, rms, max, p50, p90, p99.
+nlohmann::json scalar_stats_json(const ScalarStats& s);
 
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);

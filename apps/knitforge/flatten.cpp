@@ -35,11 +35,6 @@ nlohmann::json distortion_json(const DistortionStats& s) {
           {"flipped_faces", s.flipped_faces}};
 }
 
-nlohmann::json scalar_json(const ScalarStats& s) {
-  return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
-          {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};
-}
-
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOError(fmt::format("{}: cannot open the darts file", path));
@@ -244,9 +239,9 @@ void add_flatten_command(CLI::App& app, Action& action) {
             {"part_size_mm", ev.target_size},
             {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
             {"relaxation", {{"iterations", ev.relax_iterations}, {"converged", ev.relax_converged}}},
-            {"stitch_error_mm", scalar_json(ev.stitch_error_stats)},
-            {"stitch_distortion_designed", scalar_json(ev.designed_distortion_stats)},
-            {"stitch_distortion_relaxed", scalar_json(ev.relaxed_distortion_stats)}};
+            {"stitch_error_mm", scalar_stats_json(ev.stitch_error_stats)},
+            {"stitch_distortion_designed", scalar_stats_json(ev.designed_distortion_stats)},
+            {"stitch_distortion_relaxed", scalar_stats_json(ev.relaxed_distortion_stats)}};
       }
       report["seconds"] = {{"load", load_seconds},
                            {"flatten_without_darts", plain_seconds},

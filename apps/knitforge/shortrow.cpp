@@ -118,11 +118,6 @@ TriMesh cut_surface(const TriMesh& mesh, const std::string& path, double scale, 
   return out;
 }
 
-nlohmann::json stats_json(const ScalarStats& s) {
-  return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
-          {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};
-}
-
 /// The stitch mesh as triangles with one colour per stitch (for viewing).
 void write_coloured_stitches(const std::string& path, const StitchMesh& mesh,
                              const std::vector<double>& value, double hi) {
@@ -289,9 +284,9 @@ void add_shortrow_command(CLI::App& app, Action& action) {
               {"energy_start", ev.relax_energy_start},
               {"energy_end", ev.relax_energy_end}}},
             {"correspondence_rms_mm", ev.correspondence_rms},
-            {"stitch_error_mm", stats_json(ev.stitch_error_stats)},
-            {"distortion_designed", stats_json(ev.designed_distortion_stats)},
-            {"distortion_relaxed", stats_json(ev.relaxed_distortion_stats)}};
+            {"stitch_error_mm", scalar_stats_json(ev.stitch_error_stats)},
+            {"distortion_designed", scalar_stats_json(ev.designed_distortion_stats)},
+            {"distortion_relaxed", scalar_stats_json(ev.relaxed_distortion_stats)}};
       }
       const auto types = count_stitch_types(d.stitch_mesh);
       const int short_row_ends = types[static_cast<int>(StitchType::ShortRowLeft)] +
@@ -332,7 +327,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                           {"cuts", static_cast<int>(d.wales.cuts.size())},
                           {"cut_length_mm", cut_length}};
       report["apexes"] = {{"count", static_cast<int>(d.apex_spacing.apexes.size())},
-                          {"nearest_apex_mm", stats_json(d.apex_spacing.stats)}};
+                          {"nearest_apex_mm", scalar_stats_json(d.apex_spacing.stats)}};
       report["field"] = {
           {"signed", d.field_signed}, {"windows", d.field_windows}, {"approximate", d.field_approximate}};
       report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
