@@ -210,17 +210,19 @@ HandInstructions hand_instructions(const KnittingMap& map, const MachineProfile&
     for (const LayoutChain& ch : L.chains) {
       if (ch.row != r) continue;
       const int n0 = K(r, ch.cols.front()), n1 = K(r, ch.cols.back()), onto = K(r, ch.onto_col);
+      const bool at_start = ch.cols.front() == (hr.direction > 0 ? L.first_col[r] : L.last_col[r]);
       const std::string what = fmt::format(
-          "Cast off {} stitch{} at the {} edge with the latch tool (chain cast-off from {} to {}), put the last loop "
+          "cast off the {} stitch{} of {} with the latch tool (chain cast-off from {} to {}), put the last loop "
           "onto {} and push the emptied needles to non-working position A",
-          ch.cols.size(), ch.cols.size() == 1 ? "" : "es", n0 < onto ? "left" : "right", lab(n0), lab(n1), lab(onto));
-      if (ch.in_course) {
+          ch.cols.size(), ch.cols.size() == 1 ? "" : "es", range_label(std::min(n0, n1), std::max(n0, n1), NB),
+          lab(n0), lab(n1), lab(onto));
+      if (at_start) {
         // the carriage side: these are the row's first stitches
-        hr.before.push_back(what + " (they are this row's stitches of those wales)");
+        hr.before.push_back("At the carriage side, " + what + " (they are this row's stitches of those wales)");
         nst -= static_cast<int>(ch.cols.size());
         a = onto;
       } else {
-        hr.after.push_back(what + " after this row");
+        hr.after.push_back("After the row, " + what + " (its wales end here)");
       }
       H.hand_transfers += static_cast<int>(ch.cols.size());
     }

@@ -348,7 +348,7 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
                           held ? fmt::format(", short row ({} held loops)", held) : std::string()));
     std::vector<const LayoutChain*> in_chains;
     for (const auto& ch : L.chains)
-      if (ch.row == r && ch.in_course) in_chains.push_back(&ch);
+      if (ch.row == r) in_chains.push_back(&ch);
     for (const LayoutChain* ch : in_chains)
       e.comment(fmt::format("bound off along course {}: columns {} each knitted, then moved onto the next needle "
                             "(knit, pass over), ending on col {}",
@@ -393,23 +393,6 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
                               opt.close_turns ? "the held needle is at its loop limit" : "turn closure disabled"));
         ++st.open_turns;
       }
-    }
-    for (const auto& chain : L.chains) {
-      if (chain.row != r || chain.in_course) continue;
-      const LayoutChain* ch = &chain;
-      e.comment(fmt::format("bind-off: chain of columns {} at the edge after course {}, ending on col {}", r,
-                            fmt::join(ch->cols, " "), ch->onto_col));
-      e.fabric = false;
-      e.settings(prof.writer.bind_off);
-      for (size_t k = 0; k + 1 < ch->cols.size(); ++k) {
-        const int n = N(r, ch->cols[k]);
-        e.move_loops(n, -d);
-        e.knit(-d, n - d, M);
-      }
-      e.move_loops(N(r, ch->cols.back()), -d);
-      e.comment(fmt::format("fabric: course knitting resumes after the edge bind-off of course {}", r));
-      e.settings(body);
-      e.fabric = true;
     }
   }
   e.fabric = false;
@@ -480,6 +463,9 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
     for (int n = lo; n <= hi; ++n) e.line("drop f{}", n);
   }
 
+  prog.main_carrier = M;
+  prog.waste_carrier = need_waste ? W : std::string();
+  prog.draw_carrier = waste_rows > 0 ? D : std::string();
   st.increases = L.increases;
   st.decreases = L.decreases;
   st.edge_chained = L.chained;

@@ -35,16 +35,15 @@
 ///     of the row, in the row's direction: `tuck` on the (empty) needle of a
 ///     wale's first stitch (Increase or outside increase: the stitch has no
 ///     loop below), `knit` for every other stitch (a needle holding a merged
-///     Decrease loop knits both loops together). An edge bind-off chain of
-///     the row (LayoutChain, in_course) moves each chained loop onto the next
-///     needle right after it is knitted.
+///     Decrease loop knits both loops together). A bind-off chain of the row
+///     (LayoutChain: wales ending with a free top, e.g. several at once at
+///     the fabric edge) moves each chained loop onto the next stitch's needle
+///     right after it is knitted (`; bound off along course r ...`).
 ///  4. `; turn after course r ...` when the row ends inside the fabric: a
 ///     `tuck` on the first held needle beyond the turn closes the hole
 ///     (see needle_layout.h; omitted, with a comment, when the needle already
 ///     holds the closure limit).
-///  5. `; bind-off: chain of columns ... after course r` for an edge chain
-///     after the row, then `; fabric ...`; `; transfers before course r ...`
-///     when the needle layout changes (needle_layout.h): per step
+///  5. `; transfers before course r ...` when the needle layout changes (needle_layout.h): per step
 ///     `xfer f n b n` at racking 0 for every moving loop, then per
 ///     displacement d `rack d` and `xfer b n f n+d`, then `rack 0`. The
 ///     comments list the increases and decreases and the counts.
@@ -144,6 +143,9 @@ struct KnitoutProgram {
   std::string text;                   ///< the program, LF line endings
   KnitoutStats stats;
   std::vector<std::string> warnings;  ///< e.g. several yarns knitted with one carrier
+  std::string main_carrier;           ///< the carriers of each role ("" when unused)
+  std::string waste_carrier;
+  std::string draw_carrier;
   /// The virtual machine's verdict (strict) and the comparison with the map
   /// (empty when KnitoutOptions::verify is false).
   std::optional<KnitoutSimulation> simulation;

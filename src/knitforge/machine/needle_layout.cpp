@@ -252,26 +252,19 @@ NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOption
         }
         size_t j = i;
         while (j < order.size() && free_ending(order[j])) ++j;
-        LayoutChain ch;
-        ch.row = r;
-        if (j < order.size()) {
-          // along the row, onto the next stitch
-          ch.cols.assign(order.begin() + static_cast<long>(i), order.begin() + static_cast<long>(j));
-          ch.onto_col = order[j];
-          ch.in_course = true;
-        } else if (i > 0) {
-          // at the row's end: a bind-off chain back, onto the stitch before
-          ch.cols.assign(order.rbegin(), order.rbegin() + static_cast<long>(j - i));
-          ch.onto_col = order[i - 1];
-          ch.in_course = false;
-          loops[ch.onto_col] += 1;
-        } else {
-          L.problems.push_back({r, order.front(),
-                                fmt::format("knitting map row {}: every stitch of the row ends its wale and no later "
-                                            "stitch takes their loops; the fabric falls apart there",
-                                            r)});
+        if (j == order.size()) {
+          // the row's last stitch ends its wale: the next course cannot start
+          // there (check_knittability() reports it as between-row-continuity)
+          L.problems.push_back({r, order[i],
+                                fmt::format("knitting map row {}: its last stitches (from column {}) end their "
+                                            "wales, so the next course cannot start where this one ends",
+                                            r, order[i])});
           break;
         }
+        LayoutChain ch;
+        ch.row = r;
+        ch.cols.assign(order.begin() + static_cast<long>(i), order.begin() + static_cast<long>(j));
+        ch.onto_col = order[j];
         for (int c : ch.cols) {
           chained.push_back(c);
           loops[c] = 0;

@@ -37,19 +37,17 @@
 /// pivot onto its left neighbour; when that needle would then hold more than
 /// `max_stack` loops the other neighbour is used instead.
 ///
-/// Edge bind-off chains. When the fabric edge narrows by more wales in one
-/// course than merging can stack (three or more ending wales next to each
-/// other with free tops), the run of them is bound off by a chain instead,
-/// as a knitter casts off stitches at the edge (LayoutChain):
-///  - at the side where row r starts (the carrier is there): while row r is
-///    knitted, the loop of each chained wale is moved onto the next wale's
-///    needle right after it is knitted, so the next stitch of the row is
-///    knitted through both (knit, pass over): the chain runs along row r;
-///  - at the side where row r ends: after row r, from the edge inwards, each
-///    loop is moved onto the next needle and knitted there in a bind-off
-///    pass; the chain's last loop is moved onto the next wale's needle.
-/// Either way the chain ends on the first wale after the run (`onto_col`),
-/// with at most one extra loop.
+/// Bind-off chains. A wale whose top touches no later stitch (a free top:
+/// the fabric edge narrows by several wales in one course, or a hole opens)
+/// cannot merge onto a neighbour without knitting a fabric the map does not
+/// describe. Runs of such wales are bound off by a chain along their row,
+/// as a knitter casts off stitches at the edge (LayoutChain): right after a
+/// chained stitch of row r is knitted its loop is moved onto the needle of
+/// the next stitch of the row, which is then knitted through both (knit,
+/// pass over); the chain ends on that next stitch (`onto_col`), so no
+/// needle holds more than two loops. In a knittable map such a run never
+/// ends its row (the row's last stitch continues into the next course), so
+/// there always is a next stitch.
 ///
 /// Closure tucks are given up where they would overflow a merge: a tuck of
 /// an earlier turn on the ending wale or its target is taken back (that turn
@@ -107,15 +105,12 @@ struct LayoutMerge {
   int onto_col = -1;
 };
 
-/// A run of ending wales at the fabric edge bound off by a chain (see the
-/// file comment), made in or after row `row`.
+/// A run of ending wales with free tops bound off by a chain along row
+/// `row` (see the file comment).
 struct LayoutChain {
   int row = -1;
-  /// The chained wales from the fabric edge inwards: row `row`'s first
-  /// stitches (in_course) or its last stitches, in reverse (after the row).
-  std::vector<int> cols;
-  int onto_col = -1;      ///< the wale that receives the chain's last loop
-  bool in_course = true;  ///< knitted along row `row` (else a bind-off chain after it)
+  std::vector<int> cols;  ///< the chained wales, in the row's knitting order
+  int onto_col = -1;      ///< the next stitch of the row, which takes the chain's last loop
 };
 
 /// A transition the machine cannot make.
@@ -156,7 +151,7 @@ struct NeedleLayout {
   std::vector<int> closure_col;
   /// Per row: true when the row ends inside the fabric (a short-row turn).
   std::vector<uint8_t> inside_turn;
-  /// Edge bind-off chains, by row (at most one per side of a row).
+  /// Bind-off chains, by row.
   std::vector<LayoutChain> chains;
   /// Transitions the machine cannot make (empty when the layout is complete).
   std::vector<LayoutProblem> problems;
@@ -165,7 +160,7 @@ struct NeedleLayout {
   int max_needle = 0;          ///< largest needle used at any time
   int increases = 0;           ///< starting wales (interior and edge)
   int decreases = 0;           ///< ending wales merged onto a neighbour or chained
-  int chained = 0;             ///< ending wales bound off by edge chains
+  int chained = 0;             ///< ending wales bound off by chains
   int loop_moves = 0;          ///< moves over all steps (each is 2 transfers)
 
   int needle_at(int r, int c) const { return needle[static_cast<size_t>(r) * cols + c]; }
