@@ -68,6 +68,10 @@ void write_map_by_extension(const std::string& path, const KnittingMap& map);
 /// (a stitch mesh) rather than a plain triangle mesh.
 bool is_stitch_mesh_ply(const std::string& path);
 
+/// The whole content of a text file (`what` names it in the error).
+/// \throw IOError when it cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what = "file");
+
 /// Reads a triangle mesh and scales it to millimetres.
 TriMesh load_surface(const std::string& path, const std::string& units);
 

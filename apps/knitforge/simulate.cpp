@@ -13,6 +13,7 @@
 #include "knitforge/machine/knitout_rules.h"
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/machine_profile.h"
+#include "knitforge/report/program_report.h"
 
 namespace knitforge::cli {
 
@@ -92,7 +93,7 @@ void add_simulate_command(CLI::App& app, Action& action) {
       "numbers and statistics; with --against, check it knits the given map. Exit 0 when there is no error "
       "(warnings allowed), 1 when there is");
   struct Opts {
-    std::string input, machine = "shima-swg091n2", against, strict;
+    std::string input, machine = "shima-swg091n2", against, strict, report;
     bool json = false, rules = false;
   };
   auto o = std::make_shared<Opts>();
@@ -104,6 +105,9 @@ void add_simulate_command(CLI::App& app, Action& action) {
   cmd->add_option("--strict", o->strict,
                   "Warning categories to treat as errors: all, none, or a comma-separated list (e.g. "
                   "drop,loops-left,float)");
+  cmd->add_option("--report", o->report,
+                  "Write a fabric view to this directory: the knit graph as a relaxed stitch mesh, the yarn, "
+                  "per-course statistics and the findings placed on the fabric, in report.html");
   cmd->add_flag("--rules", o->rules, "Print the machine's rules (check, category, level, source) as Markdown");
   cmd->add_flag("--json", o->json, "Print the report as JSON");
   cmd->callback([=, &action] {
@@ -120,7 +124,8 @@ void add_simulate_command(CLI::App& app, Action& action) {
       SimulateOptions so;
       so.strict = parse_strict_rules(o->strict);
       if (!o->against.empty()) so.strict = all_rules_strict();
-      const KnitoutFile file = read_knitout(o->input);
+      const std::string text = read_text_file(o->input, "knitout program");
+      const KnitoutFile file = parse_knitout(text);
       const KnitoutSimulation sim = simulate_knitout(file, profile, so);
       bool ok = sim.ok();
       nlohmann::json j;
@@ -141,6 +146,16 @@ void add_simulate_command(CLI::App& app, Action& action) {
         } else {
           std::printf("%s: %s", o->against.c_str(), cmp.text().c_str());
         }
+      }
+      if (!o->report.empty()) {
+        const ProgramReport rep = write_program_report(o->input, text, sim, o->report);
+        const KnitGraphFabric& f = rep.fabric;
+        note(fmt::format("fabric view -> {}/report.html ({}{}; {} of {} findings placed on the fabric)", o->report,
+                         f.kind.empty() ? "not drawn: " + f.reason : f.kind,
+                         f.kind == "sheet"  ? fmt::format(", {} courses x {} wales", f.map.rows, f.map.cols)
+                         : f.kind == "tube" ? fmt::format(", {} rounds of {} stitches", f.rounds, f.ring)
+                                            : std::string(),
+                         rep.json["diagnostics_placed"].get<int>(), rep.json["diagnostics"].size()));
       }
       if (o->json) std::printf("%s\n", j.dump(2).c_str());
       return ok ? 0 : 1;
