@@ -14,76 +14,9 @@
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/machine_profile.h"
 #include "knitforge/report/program_report.h"
+#include "knitforge/report/simulation_json.h"
 
 namespace knitforge::cli {
-
-namespace {
-
-nlohmann::json to_json(const KnitoutSimulation& sim) {
-  nlohmann::json j;
-  j["valid"] = sim.ok();
-  j["machine"] = sim.machine;
-  j["errors"] = sim.errors;
-  j["warnings"] = sim.warnings;
-  const SimulationStats& st = sim.stats;
-  j["stats"] = {{"carriage_passes", st.carriage_passes},
-                {"knit_passes", st.knit_passes},
-                {"transfer_passes", st.transfer_passes},
-                {"racks", st.racks},
-                {"knits", st.knits},
-                {"tucks", st.tucks},
-                {"splits", st.splits},
-                {"misses", st.misses},
-                {"transfers", st.transfers},
-                {"fabric_transfers", st.transfers_by_section[0]},
-                {"other_transfers", st.transfers - st.transfers_by_section[0]},
-                {"drops", st.drops},
-                {"loops", sim.graph.num_loops()},
-                {"min_needle", st.min_needle},
-                {"max_needle", st.max_needle},
-                {"time_s", st.time_s},
-                {"gauge", st.gauge}};
-  auto& yarn = j["stats"]["yarn_mm"] = nlohmann::json::object();
-  for (size_t c = 0; c < st.yarn_mm.size(); ++c) {
-    if (st.yarn_mm[c] > 0.0) yarn[sim.graph.carrier_names[c]] = st.yarn_mm[c];
-  }
-  auto& counts = j["counts"] = nlohmann::json::object();
-  for (int r = 0; r < kNumKnitoutRules; ++r) {
-    if (sim.error_counts[r] + sim.warning_counts[r] > 0) {
-      counts[std::string(name(static_cast<KnitoutRule>(r)))] = {{"errors", sim.error_counts[r]},
-                                                                {"warnings", sim.warning_counts[r]}};
-    }
-  }
-  auto& diags = j["diagnostics"] = nlohmann::json::array();
-  for (const auto& d : sim.diagnostics) {
-    diags.push_back({{"line", d.line},
-                     {"severity", d.severity == Severity::Error ? "error" : "warning"},
-                     {"rule", std::string(name(d.rule))},
-                     {"check", std::string(knitout_check_id(d.check))},
-                     {"message", d.message}});
-  }
-  return j;
-}
-
-nlohmann::json to_json(const GraphComparison& c) {
-  nlohmann::json j;
-  j["matches"] = c.ok();
-  j["map_stitches"] = c.map_stitches;
-  j["fabric_loops"] = c.fabric_loops;
-  j["mismatches"] = c.mismatches;
-  auto& issues = j["issues"] = nlohmann::json::array();
-  for (const auto& m : c.issues) {
-    issues.push_back({{"kind", m.kind},
-                      {"stitch", m.stitch},
-                      {"row", m.row},
-                      {"col", m.col},
-                      {"line", m.line},
-                      {"message", m.message}});
-  }
-  return j;
-}
-
-}  // namespace
 
 void add_simulate_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
@@ -130,7 +63,7 @@ void add_simulate_command(CLI::App& app, Action& action) {
       bool ok = sim.ok();
       nlohmann::json j;
       if (o->json) {
-        j = to_json(sim);
+        j = simulation_json(sim);
         j["file"] = o->input;
       } else {
         std::printf("%s: %s", o->input.c_str(), sim.text().c_str());
@@ -141,7 +74,7 @@ void add_simulate_command(CLI::App& app, Action& action) {
         const GraphComparison cmp = compare_knit_graph(sim.graph, map);
         ok = ok && cmp.ok();
         if (o->json) {
-          j["against"] = to_json(cmp);
+          j["against"] = graph_comparison_json(cmp);
           j["against"]["map"] = o->against;
         } else {
           std::printf("%s: %s", o->against.c_str(), cmp.text().c_str());

@@ -14,6 +14,7 @@
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/machine/machine_profile.h"
 #include "knitforge/report/report_html.h"
+#include "knitforge/report/simulation_json.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/errors.h"
 
@@ -145,12 +146,8 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
   machine["yarn_m"] = std::move(yarn);
   machine["operations"] = {{"knits", st.knits},         {"tucks", st.tucks},   {"splits", st.splits},
                            {"misses", st.misses},       {"transfers", st.transfers}, {"drops", st.drops}};
-  json counts = json::object();
-  for (int r = 0; r < kNumKnitoutRules; ++r)
-    if (sim.error_counts[r] + sim.warning_counts[r] > 0)
-      counts[std::string(name(static_cast<KnitoutRule>(r)))] = {{"errors", sim.error_counts[r]},
-                                                                {"warnings", sim.warning_counts[r]}};
-  machine["counts"] = std::move(counts);
+  const json verdict = simulation_json(sim);
+  machine["counts"] = verdict["counts"];
   machine["notes"] = json::array({"knitting time and yarn lengths are estimates from nominal machine data"});
   if (F.kind == "sheet") {
     machine["courses"] = F.map.rows;
@@ -185,22 +182,17 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
                        {"time_s", sp.time_s}});
   }
   j["courses"] = std::move(courses);
-  json diags = json::array();
+  json diags = verdict["diagnostics"];
   int placed = 0;
-  for (const KnitoutDiagnostic& d : sim.diagnostics) {
-    json e = {{"line", d.line},
-              {"severity", d.severity == Severity::Error ? "error" : "warning"},
-              {"rule", std::string(name(d.rule))},
-              {"check", std::string(knitout_check_id(d.check))},
-              {"message", d.message}};
+  for (size_t k = 0; k < diags.size(); ++k) {
+    const KnitoutDiagnostic& d = sim.diagnostics[k];
     const int s = d.loop >= 0 && mesh.num_stitches() > 0 ? place(d.loop) : -1;
     if (s >= 0) {
       const Vec3 c = stitch_centroid(mesh, s);
-      e["stitch"] = s;
-      e["position"] = {c.x(), c.y(), c.z()};
+      diags[k]["stitch"] = s;
+      diags[k]["position"] = {c.x(), c.y(), c.z()};
       ++placed;
     }
-    diags.push_back(std::move(e));
   }
   j["diagnostics"] = std::move(diags);
   j["diagnostics_placed"] = placed;
