@@ -72,9 +72,9 @@ void default_checks(MachineProfile& p) {
   set(p, C::ReleasehookMismatch, L::Error, fmt::format("{}: \"Can't releasehook on ..., hook currently holds\"", kDat));
   set(p, C::ReleasehookEarly, L::Error,
       fmt::format("{}: releasehook follows an inhook of the same set and at least one knitting operation", kSpec));
-  set(p, C::HookTransfer, L::Error,
-      "the hook holds the yarn end at the bed until released; knitforge releases it before any transfer "
-      "(docs/machines.md)");
+  set(p, C::HookTransfer, L::Warning,
+      "knitforge's practice, not a translator's rule: the hook holds the yarn end at the bed until released, so "
+      "knitforge releases it before any transfer; the open translators do not check it");
   set(p, C::OutWhileHooked, L::Error,
       fmt::format("{}: \"Can't out carriers, hook release pending\", \"Can't outhook carriers, hook is already "
                   "holding\"; {}: Hooked_Carrier_Exception",
