@@ -1,6 +1,7 @@
 #include "knitforge/geometry/mesh_measures.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -112,34 +113,71 @@ Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the
 // triangle), with a fallback to the edges for degenerate triangles.
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+TrianglePoint closest_triangle_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  using R = TrianglePoint::Region;
+  auto at_vertex = [](const Vec3& q, int k) {
+    TrianglePoint t{q, Vec3::Zero(), R::Vertex, k};
+    t.bary[k] = 1.0;
+    return t;
+  };
+  // Point q on edge k (from corner k to corner k+1) at parameter s.
+  auto on_edge = [](const Vec3& q, int k, double s) {
+    TrianglePoint t{q, Vec3::Zero(), R::Edge, k};
+    t.bary[k] = 1.0 - s;
+    t.bary[(k + 1) % 3] = s;
+    return t;
+  };
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double n2 = ab.cross(ac).squaredNorm();
   if (!(n2 > 1e-24 * std::max(ab.squaredNorm(), ac.squaredNorm()) * std::max(ab.squaredNorm(), ac.squaredNorm()))) {
-    Vec3 best = closest_point_on_segment(p, a, b);
-    for (const Vec3& q : {closest_point_on_segment(p, b, c), closest_point_on_segment(p, c, a)}) {
-      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    const Vec3* corner[3] = {&a, &b, &c};
+    TrianglePoint best;
+    double best2 = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& u = *corner[k];
+      const Vec3& v = *corner[(k + 1) % 3];
+      const Vec3 d = v - u;
+      const double l2 = d.squaredNorm();
+      const double s = l2 > 0 ? std::clamp((p - u).dot(d) / l2, 0.0, 1.0) : 0.0;
+      const TrianglePoint t = on_edge(l2 > 0 ? Vec3(u + s * d) : u, k, s);
+      const double e2 = (t.point - p).squaredNorm();
+      if (e2 < best2) best2 = e2, best = t;
     }
     return best;
   }
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  if (d1 <= 0.0 && d2 <= 0.0) return at_vertex(a, 0);
   const Vec3 bp = p - b;
   const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
+  if (d3 >= 0.0 && d4 <= d3) return at_vertex(b, 1);
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double s = d1 / (d1 - d3);
+    return on_edge(a + s * ab, 0, s);
+  }
   const Vec3 cp = p - c;
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
+  if (d6 >= 0.0 && d5 <= d6) return at_vertex(c, 2);
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double s = d2 / (d2 - d6);
+    return on_edge(a + s * ac, 2, 1.0 - s);
+  }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const double s = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return on_edge(b + s * (c - b), 1, s);
   }
   const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  TrianglePoint t;
+  t.bary = Vec3(1.0 - (vb + vc) * denom, vb * denom, vc * denom);
+  t.point = a + ab * (vb * denom) + ac * (vc * denom);
+  t.region = R::Face;
+  return t;
+}
+
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return closest_triangle_point(p, a, b, c).point;
 }
 
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -75,6 +75,20 @@ Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 /// degenerate triangles.
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// The closest point of triangle abc to p with where it lies: in the
+/// interior (Face), on an edge (Edge, `feature` 0 = ab, 1 = bc, 2 = ca) or at
+/// a corner (Vertex, `feature` 0 = a, 1 = b, 2 = c), and its barycentric
+/// coordinates (point = bary[0] a + bary[1] b + bary[2] c). A degenerate
+/// triangle (zero area) reports the closest of its three edges.
+struct TrianglePoint {
+  enum class Region { Face, Edge, Vertex };
+  Vec3 point = Vec3::Zero();
+  Vec3 bary = Vec3::Zero();
+  Region region = Region::Face;
+  int feature = 0;
+};
+TrianglePoint closest_triangle_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Euclidean distance from p to triangle abc.
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 

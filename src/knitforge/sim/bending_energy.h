@@ -1,0 +1,46 @@
+#pragma once
+/// \file bending_energy.h
+/// Discrete-shell bending (Grinspun et al. 2003, "Discrete shells") on the
+/// hinges of SimModel, with a flat rest state: per hinge with dihedral angle
+/// θ (0 when the two triangles are coplanar)
+///
+///   E = k θ²,   k = ½ D_e |ē|² / (Ā_0 + Ā_1)
+///
+/// with the rest edge length |ē|, the rest areas Ā of the two triangles and
+/// D_e = D_c (n·c)² + D_w (n·w)², n the in-plane normal of the edge and c, w
+/// the course and wale directions (sim_model.h). On a strip of rectangles
+/// split into triangles bent into a cylinder of curvature κ across its
+/// edges this sums to exactly ½ D κ² per area (the plate energy).
+///
+/// θ = atan2((n_A x n_B)·ê, n_A·n_B) with n_A = e x (x2 - x0), n_B =
+/// (x3 - x0) x e, e = x1 - x0. Gradient (exact, Bridson et al. 2003):
+/// ∂θ/∂x2 = -n̂_A / h_A, ∂θ/∂x3 = -n̂_B / h_B (h = height of the opposite
+/// vertex over the edge), ∂θ/∂x0 = -(1 - t_A) ∂θ/∂x2 - (1 - t_B) ∂θ/∂x3,
+/// ∂θ/∂x1 = -t_A ∂θ/∂x2 - t_B ∂θ/∂x3 (t = the opposite vertex's position
+/// along e, as a fraction). Hessian: the Gauss-Newton part 2k ∇θ ∇θᵀ, which
+/// is positive semi-definite and equal to the exact Hessian at θ = 0; the
+/// dropped term 2kθ ∇²θ is O(θ) relative (θ of a few degrees on smooth
+/// garments), so Newton converges fast but not quadratically in bending.
+/// A hinge whose triangles are degenerate (height below 1e-9 of the edge)
+/// contributes its value only.
+
+#include <Eigen/Core>
+
+#include "knitforge/geometry/vec.h"
+#include "knitforge/sim/energy_eval.h"
+#include "knitforge/sim/membrane_energy.h"
+#include "knitforge/sim/sim_model.h"
+
+namespace knitforge {
+
+/// Signed dihedral angle θ of a hinge (radians, in (-π, π]).
+double dihedral_angle(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3);
+
+/// Energy of one hinge (vertex order of BendingHinge::v).
+ElementEnergy<4> hinge_element_energy(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
+                                      const BendingHinge& hinge, Derivatives what = Derivatives::Hessian);
+
+/// Adds the bending energy of every hinge of `model` at positions x (3n, mm).
+void add_bending_energy(const SimModel& model, const Eigen::VectorXd& x, EnergyEval& out);
+
+}  // namespace knitforge

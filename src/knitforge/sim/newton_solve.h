@@ -1,0 +1,85 @@
+#pragma once
+/// \file newton_solve.h
+/// Newton's method with line search for the simulator's energies (static
+/// equilibrium and every backward-Euler step, docs/sim.md).
+///
+/// Each iteration evaluates value, gradient and Hessian, solves
+/// (H + μ s I) p = -g with CHOLMOD (geometry/sparse_solver.h; s = the mean
+/// diagonal entry, μ >= 0 a Levenberg-Marquardt shift that is 0 whenever the
+/// Hessian factors and the full step is taken, raised tenfold when the
+/// factorisation fails or the step is poor), limits the step to the
+/// collision-free fraction max_step(x, x + p) (at most 1) and backtracks
+/// (halving) until the Armijo condition E(x + αp) <= E(x) + 10⁻⁴ α gᵀp holds.
+/// Fixed unknowns (pins) keep their values: their rows and columns are
+/// replaced by the identity and their gradient entries ignored.
+///
+/// Converged means: the largest force on a free vertex, max_i |g_i| (the
+/// Euclidean norm of vertex i's three gradient entries, mN), is at most
+/// force_tolerance_mn. The result says so honestly: `converged` is false
+/// when the iteration limit is reached, the line search cannot decrease the
+/// energy any more (round-off) or the factorisation keeps failing; x is then
+/// the last iterate (the lowest energy found). Deterministic: the same inputs
+/// give the same iterates.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "knitforge/geometry/sparse_solver.h"
+#include "knitforge/sim/energy_eval.h"
+
+namespace knitforge {
+
+struct NewtonOptions {
+  int max_iterations = 200;
+  /// Converged when the largest free vertex force is at most this (mN).
+  double force_tolerance_mn = 1e-6;
+  int max_line_search_steps = 40;  ///< halvings at most per iteration
+  double armijo = 1e-4;
+};
+
+/// Wall-clock seconds per part of the solve.
+struct NewtonTimings {
+  double evaluate = 0.0;     ///< value, gradient and Hessian evaluations
+  double factor = 0.0;       ///< Cholesky factorisations and solves
+  double max_step = 0.0;     ///< collision-free step computations
+  double line_search = 0.0;  ///< energy evaluations of the line search
+};
+
+struct NewtonResult {
+  Eigen::VectorXd x;
+  bool converged = false;
+  int iterations = 0;        ///< Newton steps taken
+  int factorizations = 0;
+  double energy = 0.0;       ///< at x (µJ)
+  double max_force_mn = 0.0; ///< largest free vertex force at x (mN)
+  /// Energy before each iteration and at the end.
+  std::vector<double> energies;
+  /// "converged", "iteration limit", "no descent (round-off)", "factorisation failed".
+  std::string stop_reason;
+  NewtonTimings seconds;
+};
+
+/// evaluate(x, what): the energy at x (3n) with the requested derivatives;
+/// an infinite value marks an inadmissible x (e.g. inside a barrier).
+using EvaluateEnergy = std::function<EnergyEval(const Eigen::VectorXd& x, Derivatives what)>;
+/// max_step(x0, x1): the largest fraction t in [0, 1] such that the straight
+/// path x0 + s (x1 - x0), s in [0, t], is admissible (collision free).
+using MaxStep = std::function<double(const Eigen::VectorXd& x0, const Eigen::VectorXd& x1)>;
+
+/// Minimises the energy from x0. `fixed` is empty or one flag per unknown
+/// (3n). `solver` keeps the factorisation between calls (pass the same one
+/// for every solve with one model, so the symbolic analysis can be reused).
+/// \throw InvalidInput for mismatched sizes, a non-finite x0 or an
+///        inadmissible (infinite-energy) x0; SolverError when the energy
+///        becomes non-finite in a way no step size avoids.
+NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fixed, const EvaluateEnergy& evaluate,
+                          const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver);
+
+/// The largest vertex force max_i |g_i| over vertices whose three unknowns
+/// are not all fixed (mN).
+double max_vertex_force(const Eigen::VectorXd& gradient, const std::vector<char>& fixed);
+
+}  // namespace knitforge

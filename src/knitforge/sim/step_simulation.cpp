@@ -1,0 +1,270 @@
+#include "knitforge/sim/step_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/core.h>
+
+#include "knitforge/sim/bending_energy.h"
+#include "knitforge/sim/collision_free_step.h"
+#include "knitforge/sim/contact_candidates.h"
+#include "knitforge/sim/friction_energy.h"
+#include "knitforge/sim/inertia_energy.h"
+#include "knitforge/sim/membrane_energy.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+
+SimWorkspace::SimWorkspace(const SimModel& model) : model_(&model), pattern_(build_hessian_pattern(model)) {
+  const int n = model.num_vertices();
+  fixed_.assign(3 * static_cast<size_t>(n), 0);
+  pinned_.assign(n, 0);
+  for (int v : model.pinned) {
+    if (v < 0 || v >= n) throw InvalidInput(fmt::format("simulation: pinned vertex {} out of range (0..{})", v, n - 1));
+    pinned_[v] = 1;
+    for (int k = 0; k < 3; ++k) fixed_[3 * v + k] = 1;
+  }
+}
+
+double elastic_energy(const SimModel& model, const Eigen::VectorXd& x) {
+  EnergyEval ev(model.num_vertices(), Derivatives::Value);
+  add_membrane_energy(model, x, PsdProjection::None, ev);
+  add_bending_energy(model, x, ev);
+  return ev.value;
+}
+
+namespace {
+
+void check_contact(const ContactParams& c) {
+  if (!(c.distance_mm > 0 && std::isfinite(c.distance_mm) && c.barrier_pressure_kpa > 0 &&
+        std::isfinite(c.barrier_pressure_kpa) && c.friction >= 0 && std::isfinite(c.friction) &&
+        c.friction_velocity_mm_s > 0 && std::isfinite(c.friction_velocity_mm_s))) {
+    throw InvalidInput(fmt::format(
+        "simulation: contact distance {} mm, barrier pressure {} kPa and friction velocity {} mm/s must be positive, "
+        "friction {} >= 0",
+        c.distance_mm, c.barrier_pressure_kpa, c.friction_velocity_mm_s, c.friction));
+  }
+}
+
+void accumulate(NewtonTimings& a, const NewtonTimings& b) {
+  a.evaluate += b.evaluate;
+  a.factor += b.factor;
+  a.max_step += b.max_step;
+  a.line_search += b.line_search;
+}
+
+// One step of length h without splitting; returns false when the body's
+// motion would pass through a vertex of the carried start.
+bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body, const std::vector<Vec3>& body_end,
+              const std::vector<Vec3>& pin_targets, const StepOptions& o, double h, StepResult& out) {
+  const SimModel& model = ws.model();
+  const Eigen::VectorXd& xn = state.positions_mm;
+  const double dhat = o.contact.distance_mm;
+  const bool has_body = !body.empty();
+  const bool moves = has_body && !body_end.empty();
+  // The start of the Newton solve: carried by the body near it, pins at their targets.
+  Eigen::VectorXd x0 = xn;
+  double body_speed = 0.0;
+  if (moves) {
+    for (size_t k = 0; k < body_end.size(); ++k) body_speed = std::max(body_speed, (body_end[k] - body.mesh().vertices[k]).norm());
+  }
+  KinematicBody end_body = body;
+  if (moves) end_body.move_to(body_end);
+  if (moves && body_speed > 0) {
+    for (int v = 0; v < model.num_vertices(); ++v) {
+      if (ws.pinned_vertices()[v]) continue;
+      const auto q = body.closest_point_within(xn.segment<3>(3 * v), dhat + 2 * body_speed);
+      if (q) x0.segment<3>(3 * v) += end_body.point(q->face, q->where.bary) - q->where.point;
+    }
+  }
+  for (size_t k = 0; k < model.pinned.size() && k < pin_targets.size(); ++k) {
+    x0.segment<3>(3 * model.pinned[k]) = pin_targets[k];
+  }
+  if (has_body) {
+    const double t = moves ? collision_free_step(body, body_end, xn, x0, ws.pinned_vertices())
+                           : collision_free_step(body, xn, x0, ws.pinned_vertices());
+    if (t < 1.0) return false;
+  }
+  const Eigen::VectorXd xt = predict_positions(xn, state.velocities_mm_s, h, o.gravity_mm_s2);
+  Eigen::VectorXd x = x0;
+  out.converged = true;
+  for (int fi = 0; fi < std::max(1, o.friction_iterations); ++fi) {
+    std::vector<FrictionPair> friction;
+    if (has_body && o.contact.friction > 0) {
+      const Eigen::VectorXd& lag = fi == 0 ? xn : x;
+      const std::vector<ContactPair> c =
+          find_contact_candidates(fi == 0 ? body : end_body, lag, dhat, ws.pinned_vertices());
+      friction = build_friction_pairs(model, c, fi == 0 ? body : end_body, end_body, lag, o.contact);
+      if (fi > 0) {
+        for (FrictionPair& f : friction) f.body_motion = Vec3::Zero();
+        // Lagged at the end pose: the body's motion over the step is that of the frozen point.
+        for (FrictionPair& f : friction) {
+          const auto q = body.closest_point_within(xn.segment<3>(3 * f.vertex), dhat + 2 * body_speed);
+          if (q) f.body_motion = end_body.point(q->face, q->where.bary) - q->where.point;
+        }
+      }
+    }
+    const EvaluateEnergy evaluate = [&](const Eigen::VectorXd& y, Derivatives what) {
+      EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
+      add_inertia_energy(model, y, xt, xn, h, ev);
+      add_membrane_energy(model, y, o.projection, ev);
+      add_bending_energy(model, y, ev);
+      if (has_body) {
+        const std::vector<ContactPair> pairs = find_contact_candidates(end_body, y, dhat, ws.pinned_vertices());
+        add_contact_energy(model, pairs, end_body, y, o.contact, ev);
+        if (std::isfinite(ev.value)) add_friction_energy(friction, y, xn, h, o.contact, ev);
+      }
+      return ev;
+    };
+    const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+      return has_body ? collision_free_step(end_body, a, b, ws.pinned_vertices()) : 1.0;
+    };
+    const NewtonResult r = newton_solve(x, ws.fixed_dofs(), evaluate, max_step, o.newton, ws.solver());
+    x = r.x;
+    out.converged = out.converged && r.converged;
+    out.newton_iterations += r.iterations;
+    out.max_force_mn = r.max_force_mn;
+    accumulate(out.seconds, r.seconds);
+  }
+  out.state.positions_mm = x;
+  out.state.velocities_mm_s = (x - xn) / h;
+  out.state.time_s = state.time_s + h;
+  if (has_body) {
+    out.contacts = static_cast<int>(find_contact_candidates(end_body, x, dhat, ws.pinned_vertices()).size());
+    out.min_distance_mm = min_distance_to_body(end_body, x, dhat, ws.pinned_vertices());
+  } else {
+    out.min_distance_mm = std::numeric_limits<double>::infinity();
+  }
+  return true;
+}
+
+StepResult step_recursive(SimWorkspace& ws, const SimState& state, const KinematicBody& body,
+                          const std::vector<Vec3>& body_end, const std::vector<Vec3>& pin_targets,
+                          const StepOptions& o, double h, int depth) {
+  StepResult out;
+  if (try_step(ws, state, body, body_end, pin_targets, o, h, out)) return out;
+  if (depth >= 8) {
+    throw SolverError(fmt::format(
+        "simulation: at t = {:.4f} s the body moves through the fabric even in steps of {:.3g} s; slow the motion, "
+        "or start the fabric farther from the body",
+        state.time_s, h));
+  }
+  // Halve: the body and the pins at the middle of their motion.
+  std::vector<Vec3> body_mid, pins_mid;
+  for (size_t k = 0; k < body_end.size(); ++k) body_mid.push_back(0.5 * (body.mesh().vertices[k] + body_end[k]));
+  const SimModel& model = ws.model();
+  for (size_t k = 0; k < pin_targets.size(); ++k)
+    pins_mid.push_back(0.5 * (Vec3(state.positions_mm.segment<3>(3 * model.pinned[k])) + pin_targets[k]));
+  StepResult first = step_recursive(ws, state, body, body_mid, pins_mid, o, 0.5 * h, depth + 1);
+  KinematicBody mid = body;
+  mid.move_to(body_mid);
+  StepResult second = step_recursive(ws, first.state, mid, body_end, pin_targets, o, 0.5 * h, depth + 1);
+  second.converged = second.converged && first.converged;
+  second.newton_iterations += first.newton_iterations;
+  second.substeps += first.substeps;
+  accumulate(second.seconds, first.seconds);
+  return second;
+}
+
+}  // namespace
+
+StepResult step_simulation(SimWorkspace& ws, const SimState& state, const KinematicBody& body,
+                           const std::vector<Vec3>& body_end, const std::vector<Vec3>& pin_targets,
+                           const StepOptions& options) {
+  const SimModel& model = ws.model();
+  const Eigen::Index n3 = 3 * static_cast<Eigen::Index>(model.num_vertices());
+  if (state.positions_mm.size() != n3 || state.velocities_mm_s.size() != n3) {
+    throw InvalidInput(fmt::format("simulation: the state has {} positions and {} velocities for {} unknowns",
+                                   state.positions_mm.size(), state.velocities_mm_s.size(), n3));
+  }
+  if (!(options.time_step_s > 0 && std::isfinite(options.time_step_s))) {
+    throw InvalidInput(fmt::format("simulation: the time step {} s must be positive", options.time_step_s));
+  }
+  if (!options.gravity_mm_s2.allFinite()) throw InvalidInput("simulation: gravity is not finite");
+  check_contact(options.contact);
+  if (!body_end.empty() && body_end.size() != body.mesh().vertices.size()) {
+    throw InvalidInput(fmt::format("simulation: the body's next pose has {} vertices, the body {}", body_end.size(),
+                                   body.mesh().vertices.size()));
+  }
+  if (!pin_targets.empty() && pin_targets.size() != model.pinned.size()) {
+    throw InvalidInput(fmt::format("simulation: {} pin targets for {} pinned vertices", pin_targets.size(),
+                                   model.pinned.size()));
+  }
+  StepResult r = step_recursive(ws, state, body, body_end, pin_targets, options, options.time_step_s, 0);
+  r.energy = elastic_energy(model, r.state.positions_mm);
+  return r;
+}
+
+EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0, const KinematicBody* support,
+                                    const EquilibriumOptions& o) {
+  const SimModel& model = ws.model();
+  if (x0.size() != 3 * static_cast<Eigen::Index>(model.num_vertices())) {
+    throw InvalidInput(fmt::format("equilibrium: {} start coordinates for {} vertices", x0.size(), model.num_vertices()));
+  }
+  if (!o.gravity_mm_s2.allFinite()) throw InvalidInput("equilibrium: gravity is not finite");
+  check_contact(o.contact);
+  if (!(o.friction_slip_mm > 0)) throw InvalidInput("equilibrium: friction_slip_mm must be positive");
+  const bool has_body = support && !support->empty();
+  if (o.gravity_mm_s2.norm() > 0 && !has_body && model.pinned.empty()) {
+    throw InvalidInput(
+        "equilibrium: under gravity a piece that is neither supported nor pinned falls and has no equilibrium; "
+        "give a support (e.g. predict --on SUPPORT.obj) or pins, or switch gravity off");
+  }
+  if (has_body) {
+    const double d = min_distance_to_body(*support, x0, o.contact.distance_mm, ws.pinned_vertices());
+    if (!(d > 0)) {
+      throw InvalidInput(
+          "equilibrium: the fabric touches the support at the start (distance 0); start it a little away from the "
+          "support (a gap)");
+    }
+  }
+  const double dhat = o.contact.distance_mm;
+  ContactParams fp = o.contact;
+  fp.friction_velocity_mm_s = o.friction_slip_mm;  // with h = 1: ε = the slip
+  EquilibriumResult out;
+  Eigen::VectorXd x = x0;
+  out.converged = true;
+  const int rounds = has_body && o.contact.friction > 0 ? std::max(1, o.friction_iterations) : 1;
+  for (int fi = 0; fi < rounds; ++fi) {
+    std::vector<FrictionPair> friction;
+    if (has_body && o.contact.friction > 0 && fi > 0) {
+      // Normal forces of the last solution; the slip is measured from the start.
+      const std::vector<ContactPair> c = find_contact_candidates(*support, x, dhat, ws.pinned_vertices());
+      friction = build_friction_pairs(model, c, *support, *support, x, fp);
+    }
+    const EvaluateEnergy evaluate = [&](const Eigen::VectorXd& y, Derivatives what) {
+      EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
+      add_membrane_energy(model, y, o.projection, ev);
+      add_bending_energy(model, y, ev);
+      if (o.gravity_mm_s2.norm() > 0) add_gravity_energy(model, y, o.gravity_mm_s2, ev);
+      if (has_body) {
+        const std::vector<ContactPair> pairs = find_contact_candidates(*support, y, dhat, ws.pinned_vertices());
+        add_contact_energy(model, pairs, *support, y, o.contact, ev);
+        if (std::isfinite(ev.value)) add_friction_energy(friction, y, x0, 1.0, fp, ev);
+      }
+      return ev;
+    };
+    const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+      return has_body ? collision_free_step(*support, a, b, ws.pinned_vertices()) : 1.0;
+    };
+    const NewtonResult r = newton_solve(x, ws.fixed_dofs(), evaluate, max_step, o.newton, ws.solver());
+    x = r.x;
+    out.converged = r.converged;  // the last round decides
+    out.iterations += r.iterations;
+    out.max_force_mn = r.max_force_mn;
+    out.stop_reason = r.stop_reason;
+    accumulate(out.seconds, r.seconds);
+  }
+  out.positions_mm = x;
+  out.energy = elastic_energy(model, x);
+  if (has_body) {
+    out.contacts = static_cast<int>(find_contact_candidates(*support, x, dhat, ws.pinned_vertices()).size());
+    out.min_distance_mm = min_distance_to_body(*support, x, dhat, ws.pinned_vertices());
+  } else {
+    out.min_distance_mm = std::numeric_limits<double>::infinity();
+  }
+  return out;
+}
+
+}  // namespace knitforge
