@@ -111,6 +111,7 @@ void finish_model(SimModel& model, const std::vector<RestTriangle>& rest) {
     // ½ D |e|² / (A0 + A1): exact for a cylinder bent across a strip of
     // rectangles split into triangles (docs/sim.md).
     h.stiffness = 0.5 * (0.5 * (d0 + d1)) * len * len / (e0.rest_area_mm2 + e1.rest_area_mm2);
+    if (e0.stitch >= 0 && e0.stitch == e1.stitch) h.stiffness *= kStitchDiagonalStiffening;
     model.hinges.push_back(h);
   }
 }
@@ -165,10 +166,14 @@ SimModel build_sim_model(const StitchMesh& mesh, const KnitParams& params, const
     if (nc == 3) {
       add(0, 1, 2);
     } else {
-      // The shorter designed diagonal (ties: corner 0-2), so the split follows the design's own fold.
+      // The shorter designed diagonal, so the split follows the design's own
+      // fold; ties (a flat rectangle) alternate like a checkerboard, so the
+      // triangulation has no preferred diagonal direction.
       const double d02 = (mesh.vertices[st.v[0]] - mesh.vertices[st.v[2]]).squaredNorm();
       const double d13 = (mesh.vertices[st.v[1]] - mesh.vertices[st.v[3]]).squaredNorm();
-      if (d13 < d02) {
+      const bool tie = std::abs(d13 - d02) <= 1e-9 * (d13 + d02);
+      const bool odd = ((st.course >= 0 ? st.course : 0) + (st.wale >= 0 ? st.wale : s)) % 2 != 0;
+      if (tie ? odd : d13 < d02) {
         add(0, 1, 3);
         add(1, 2, 3);
       } else {

@@ -1,0 +1,197 @@
+// Dynamic validation: free fall is exact for backward Euler, energy decays
+// without forcing, a block on an incline sticks below tan θ = μ and slides
+// above it with the Coulomb acceleration, and a sheet dropped on a sphere
+// never gets inside it (checked after every step).
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/sim/step_simulation.h"
+#include "sim_test_meshes.h"
+
+namespace knitforge {
+namespace {
+
+KnitParams square_stitches(double s) {
+  KnitParams p;
+  p.stitch_width = s;
+  p.stitch_height = s;
+  return p;
+}
+
+SimState at_rest(const Eigen::VectorXd& x) { return {x, Eigen::VectorXd::Zero(x.size()), 0.0}; }
+
+double kinetic_energy(const SimModel& model, const Eigen::VectorXd& v) {
+  double e = 0.0;
+  for (int i = 0; i < model.num_vertices(); ++i) e += 0.5 * model.vertex_mass_kg[i] * v.segment<3>(3 * i).squaredNorm();
+  return e;  // kg mm²/s² = µJ
+}
+
+// Backward Euler under constant gravity: v_n = n h g, x_n = x_0 + h² g n(n+1)/2,
+// and the piece does not deform.
+TEST(Dynamics, FreeFallIsExact) {
+  KnitMaterial m = default_single_jersey();
+  m.damping_per_s = 0.0;
+  SimModelOptions mo;
+  mo.materials = {m};
+  const SimModel model = build_sim_model(test::knit_sheet(4, 3, 2.0, 2.0), square_stitches(2.0), mo);
+  SimWorkspace ws(model);
+  StepOptions o;
+  o.time_step_s = 0.01;
+  o.newton.force_tolerance_mn = 1e-14;
+  const Eigen::VectorXd x0 = test::flatten(model.rest_positions);
+  SimState s = at_rest(x0);
+  const int steps = 10;
+  for (int k = 0; k < steps; ++k) {
+    const StepResult r = step_simulation(ws, s, KinematicBody{}, {}, {}, o);
+    ASSERT_TRUE(r.converged);
+    s = r.state;
+  }
+  const double h = o.time_step_s;
+  for (int v = 0; v < model.num_vertices(); ++v) {
+    const Vec3 want = model.rest_positions[v] + h * h * o.gravity_mm_s2 * (steps * (steps + 1) / 2.0);
+    EXPECT_LT((Vec3(s.positions_mm.segment<3>(3 * v)) - want).norm(), 1e-9);
+    EXPECT_LT((Vec3(s.velocities_mm_s.segment<3>(3 * v)) - steps * h * o.gravity_mm_s2).norm(), 1e-7);
+  }
+  EXPECT_NEAR(s.time_s, steps * h, 1e-12);
+}
+
+// A sheet stretched by 20 % and let go without gravity: kinetic + elastic
+// energy never rises from one step to the next and falls to a small part
+// of the start.
+TEST(Dynamics, EnergyDecaysWithoutForcing) {
+  const SimModel model = build_sim_model(test::knit_sheet(5, 4, 2.0, 2.0), square_stitches(2.0));
+  SimWorkspace ws(model);
+  StepOptions o;
+  o.gravity_mm_s2 = Vec3::Zero();
+  o.time_step_s = 0.005;
+  o.newton.force_tolerance_mn = 1e-10;
+  Eigen::VectorXd x0 = test::flatten(model.rest_positions);
+  for (int v = 0; v < model.num_vertices(); ++v) {
+    x0[3 * v] *= 1.2;
+    x0[3 * v + 1] *= 1.1;
+    x0[3 * v + 2] = 0.05 * std::sin(x0[3 * v]);  // a little out of plane
+  }
+  SimState s = at_rest(x0);
+  const double e0 = elastic_energy(model, x0);
+  ASSERT_GT(e0, 0.0);
+  double last = e0;
+  for (int k = 0; k < 60; ++k) {
+    const StepResult r = step_simulation(ws, s, KinematicBody{}, {}, {}, o);
+    ASSERT_TRUE(r.converged) << "step " << k;
+    s = r.state;
+    const double e = r.energy + kinetic_energy(model, s.velocities_mm_s);
+    EXPECT_LE(e, last * (1 + 1e-9)) << "step " << k;
+    last = e;
+  }
+  EXPECT_LT(last, 0.2 * e0);
+}
+
+// A 2 x 2-stitch block on a plane tilted by θ, friction μ = 0.5.
+struct Incline {
+  double displacement_mm = 0.0;  ///< down the slope after `steps` steps
+  double min_distance_mm = 0.0;  ///< smallest vertex-plane distance over all steps
+  bool converged = true;
+};
+
+Incline run_incline(double tan_theta, int steps, double h) {
+  const double theta = std::atan(tan_theta);
+  const Mat3 R = test::rotation(Vec3::UnitX(), theta);
+  TriMesh plane;
+  for (const Vec3& c : {Vec3(-300, -300, 0), Vec3(300, -300, 0), Vec3(300, 300, 0), Vec3(-300, 300, 0)})
+    plane.vertices.push_back(R * c);
+  plane.faces = {{0, 1, 2}, {0, 2, 3}};
+  const KinematicBody body(plane);
+  KnitMaterial m = default_single_jersey();
+  m.damping_per_s = 0.0;  // air damping would slow the slide (0.5/s: about 8 % here)
+  SimModelOptions mo;
+  mo.materials = {m};
+  const SimModel model = build_sim_model(test::knit_sheet(2, 2, 2.0, 2.0), square_stitches(2.0), mo);
+  SimWorkspace ws(model);
+  StepOptions o;
+  o.time_step_s = h;
+  o.contact.friction = 0.5;
+  o.contact.friction_velocity_mm_s = 0.1;
+  o.friction_iterations = 3;
+  o.newton.force_tolerance_mn = 1e-7;  // 1e-4 of a vertex's weight
+  // Rest where the barrier nearly carries the weight (r ≈ 0.988).
+  Eigen::VectorXd x0(3 * model.num_vertices());
+  for (int v = 0; v < model.num_vertices(); ++v)
+    x0.segment<3>(3 * v) = R * (model.rest_positions[v] + Vec3(-2, -2, 0.497));
+  SimState s = at_rest(x0);
+  Incline out;
+  out.min_distance_mm = INFINITY;
+  for (int k = 0; k < steps; ++k) {
+    const StepResult r = step_simulation(ws, s, body, {}, {}, o);
+    out.converged = out.converged && r.converged;
+    out.min_distance_mm = std::min(out.min_distance_mm, r.min_distance_mm);
+    s = r.state;
+  }
+  const Vec3 down = -(R * Vec3::UnitY());
+  out.displacement_mm = (s.positions_mm - x0).reshaped(3, model.num_vertices()).rowwise().mean().dot(down);
+  return out;
+}
+
+TEST(Friction, BlockOnInclineSticksBelowTanThetaEqualsMu) {
+  const Incline r = run_incline(0.3, 30, 0.01);
+  EXPECT_TRUE(r.converged);
+  EXPECT_GT(r.min_distance_mm, 0.0);
+  // Creep below ε_v = 0.1 mm/s over 0.3 s.
+  EXPECT_LT(std::abs(r.displacement_mm), 0.03);
+}
+
+TEST(Friction, BlockOnInclineSlidesAboveWithCoulombAcceleration) {
+  const double tan_theta = 0.8, mu = 0.5, h = 0.01;
+  const int steps = 30;
+  const Incline r = run_incline(tan_theta, steps, h);
+  EXPECT_TRUE(r.converged);
+  EXPECT_GT(r.min_distance_mm, 0.0);
+  const double theta = std::atan(tan_theta);
+  const double a = 9810.0 * (std::sin(theta) - mu * std::cos(theta));
+  const double want = h * h * a * steps * (steps + 1) / 2.0;  // backward Euler, constant force
+  EXPECT_NEAR(r.displacement_mm, want, 0.03 * want);
+  // Frictionless would be much farther: the friction really acts.
+  EXPECT_LT(r.displacement_mm, 0.7 * h * h * 9810.0 * std::sin(theta) * steps * (steps + 1) / 2.0);
+}
+
+// A flat sheet dropped on a dome (the upper hemisphere of radius 30 mm):
+// after every step every vertex is at a positive distance from the body and
+// on its outer side; the sheet comes to rest draped over it.
+TEST(Contact, SheetDrapedOnSphereNeverPenetrates) {
+  const double radius = 30.0;
+  const KinematicBody body(hemisphere(radius, 3.0));
+  const int cols = 20;
+  const double s = 3.0;
+  const SimModel model = build_sim_model(test::knit_sheet(cols, cols, s, s), square_stitches(s));
+  SimWorkspace ws(model);
+  StepOptions o;
+  o.time_step_s = 1.0 / 60.0;
+  o.contact.friction = 0.3;
+  o.newton.force_tolerance_mn = 1e-7;
+  Eigen::VectorXd x0 = test::flatten(model.rest_positions);
+  for (int v = 0; v < model.num_vertices(); ++v) x0.segment<3>(3 * v) += Vec3(-0.5 * cols * s, -0.5 * cols * s, radius + 0.45);
+  SimState st = at_rest(x0);
+  double lowest = INFINITY;
+  for (int k = 0; k < 40; ++k) {
+    const StepResult r = step_simulation(ws, st, body, {}, {}, o);
+    ASSERT_TRUE(r.converged) << "step " << k;
+    st = r.state;
+    ASSERT_GT(r.min_distance_mm, 0.0) << "step " << k;
+    for (int v = 0; v < model.num_vertices(); ++v) {
+      const Vec3 p = st.positions_mm.segment<3>(3 * v);
+      const auto q = body.closest_point_within(p, 1e9);
+      ASSERT_TRUE(q.has_value());
+      ASSERT_GT(q->distance2, 0.0) << "vertex " << v << " touches the body at step " << k;
+      ASSERT_GT((p - q->where.point).dot(body.face_normal(q->face)), -1e-12)
+          << "vertex " << v << " is inside the dome at step " << k;
+      lowest = std::min(lowest, p.z());
+    }
+  }
+  // It really draped: the sheet's corners hang well below the pole.
+  EXPECT_LT(lowest, radius - 10.0);
+}
+
+}  // namespace
+}  // namespace knitforge
