@@ -155,7 +155,12 @@ TEST(PureShear, HomogeneousPatchAndEnergy) {
   F(1, 1) = std::cos(ang);
   Eigen::VectorXd want(3 * n);
   for (int v = 0; v < n; ++v) want.segment<3>(3 * v) = F * model.rest_positions[v];
-  Eigen::VectorXd x0 = test::flatten(model.rest_positions);
+  // Interior start: the homogeneous map disturbed in-plane by up to 0.2 mm.
+  Eigen::VectorXd x0 = want;
+  for (int v = 0; v < n; ++v) {
+    x0[3 * v] += 0.2 * std::sin(1.7 * v);
+    x0[3 * v + 1] += 0.2 * std::cos(2.3 * v);
+  }
   std::vector<char> fixed(3 * n, 0);
   for (int j = 0; j <= rows; ++j) {
     for (int i = 0; i <= cols; ++i) {

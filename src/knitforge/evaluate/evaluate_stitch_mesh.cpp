@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/evaluate/shape_error.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/util/errors.h"
@@ -31,48 +32,24 @@ StitchMeshEvaluation evaluate_stitch_mesh(const StitchMesh& designed, const TriM
 
   timer.reset();
   const SurfaceBvh bvh(target);
-  const std::vector<Vec3>& rest = relaxed.mesh.vertices;
-  RigidTransform T = rigid_align(rest, designed.vertices);
-  if (options.refine_with_icp) {
-    const IcpResult icp = align_to_surface(rest, bvh, T, options.icp);
-    T = icp.transform;
-    ev.icp_iterations = icp.iterations;
-  }
-  ev.alignment = T;
+  ShapeError se = shape_error_to_target(relaxed.mesh.vertices, designed, target, bvh, options.refine_with_icp,
+                                        options.icp);
+  ev.icp_iterations = se.icp_iterations;
+  ev.alignment = se.alignment;
   ev.relaxed = std::move(relaxed.mesh);
-  for (Vec3& p : ev.relaxed.vertices) p = T.apply(p);
+  ev.relaxed.vertices = std::move(se.aligned);
+  ev.correspondence_rms = se.correspondence_rms;
+  ev.target_size = se.target_size;
+  ev.rms_error = se.rms_error;
+  ev.max_error = se.max_error;
+  ev.relative_rms_error = se.relative_rms_error;
+  ev.relative_max_error = se.relative_max_error;
+  ev.designed_rms_error = se.designed_rms_error;
+  ev.designed_max_error = se.designed_max_error;
+  ev.vertex_error = std::move(se.vertex_error);
+  ev.stitch_error = std::move(se.stitch_error);
   ev.seconds.align = timer.seconds();
-
   timer.reset();
-  const int nv = ev.relaxed.num_vertices();
-  double corr = 0;
-  for (int v = 0; v < nv; ++v) corr += (ev.relaxed.vertices[v] - designed.vertices[v]).squaredNorm();
-  ev.correspondence_rms = nv > 0 ? std::sqrt(corr / nv) : 0.0;
-  ev.target_size = bounding_box(target).diagonal();
-  ev.vertex_error.resize(nv);
-  double sum2 = 0, dsum2 = 0;
-  for (int v = 0; v < nv; ++v) {
-    const double e = bvh.closest_point(ev.relaxed.vertices[v]).distance;
-    const double d = bvh.closest_point(designed.vertices[v]).distance;
-    ev.vertex_error[v] = e;
-    sum2 += e * e;
-    dsum2 += d * d;
-    ev.max_error = std::max(ev.max_error, e);
-    ev.designed_max_error = std::max(ev.designed_max_error, d);
-  }
-  ev.rms_error = nv > 0 ? std::sqrt(sum2 / nv) : 0.0;
-  ev.designed_rms_error = nv > 0 ? std::sqrt(dsum2 / nv) : 0.0;
-  if (ev.target_size > 0) {
-    ev.relative_rms_error = ev.rms_error / ev.target_size;
-    ev.relative_max_error = ev.max_error / ev.target_size;
-  }
-  ev.stitch_error.resize(ev.relaxed.stitches.size());
-  for (size_t s = 0; s < ev.relaxed.stitches.size(); ++s) {
-    const Stitch& st = ev.relaxed.stitches[s];
-    double e = 0;
-    for (int k = 0; k < st.corners(); ++k) e += ev.vertex_error[st.v[k]];
-    ev.stitch_error[s] = e / st.corners();
-  }
   ev.stitch_error_stats = scalar_stats(ev.stitch_error);
   ev.seconds.distance = timer.seconds();
 

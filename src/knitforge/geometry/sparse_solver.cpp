@@ -1,6 +1,8 @@
 #include "knitforge/geometry/sparse_solver.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/CholmodSupport>
 #include <fmt/core.h>
@@ -16,6 +18,10 @@ struct SparseSolver::Impl {
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> llt;
   int n = 0;
   bool ok = false;
+  // The pattern of the last analysed matrix: a matrix with the same pattern
+  // reuses CHOLMOD's symbolic analysis (ordering and elimination tree).
+  std::vector<SparseMatrix::StorageIndex> outer, inner;
+  bool analysed = false;
   Impl() {
     // The library never prints: silence CHOLMOD's own error/warning output,
     // failures are reported through info() below.
@@ -45,7 +51,22 @@ void SparseSolver::factor(const SparseMatrix& A) {
       }
     }
   }
-  impl_->llt.compute(A);  // reads the lower triangle only
+  const auto* o = A.outerIndexPtr();
+  const auto* in = A.innerIndexPtr();
+  const bool same = impl_->analysed && A.isCompressed() &&
+                    impl_->outer.size() == static_cast<size_t>(A.outerSize() + 1) &&
+                    impl_->inner.size() == static_cast<size_t>(A.nonZeros()) &&
+                    std::equal(impl_->outer.begin(), impl_->outer.end(), o) &&
+                    std::equal(impl_->inner.begin(), impl_->inner.end(), in);
+  if (!same) {
+    impl_->llt.analyzePattern(A);  // reads the lower triangle only
+    impl_->analysed = A.isCompressed();
+    if (impl_->analysed) {
+      impl_->outer.assign(o, o + A.outerSize() + 1);
+      impl_->inner.assign(in, in + A.nonZeros());
+    }
+  }
+  impl_->llt.factorize(A);
   if (impl_->llt.info() != Eigen::Success) {
     const auto& c = impl_->llt.cholmod();
     throw SolverError(fmt::format(

@@ -103,9 +103,9 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
           for (int c = 0; c < static_cast<int>(g.size()); ++c)
             if (fixed.empty() || !fixed[c]) vals[ev.pattern->diagonal_index(c)] += mu * scale;
         }
+        ++res.factorizations;
         try {
           solver.factor(ev.pattern->matrix(vals));
-          ++res.factorizations;
           p = solver.solve(-g);
           break;
         } catch (const SolverError&) {

@@ -52,7 +52,7 @@ struct NewtonResult {
   Eigen::VectorXd x;
   bool converged = false;
   int iterations = 0;        ///< Newton steps taken
-  int factorizations = 0;
+  int factorizations = 0;    ///< Cholesky factorisations attempted (failed ones raise the shift)
   double energy = 0.0;       ///< at x (µJ)
   double max_force_mn = 0.0; ///< largest free vertex force at x (mN)
   /// Energy before each iteration and at the end.

@@ -109,7 +109,7 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
       EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
       add_inertia_energy(model, y, xt, xn, h, ev);
       add_membrane_energy(model, y, o.projection, ev);
-      add_bending_energy(model, y, ev);
+      add_bending_energy(model, y, ev, o.projection);
       if (has_body) {
         const std::vector<ContactPair> pairs = find_contact_candidates(end_body, y, dhat, ws.pinned_vertices());
         add_contact_energy(model, pairs, end_body, y, o.contact, ev);
@@ -219,6 +219,14 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
           "support (a gap)");
     }
   }
+  std::vector<char> fixed = ws.fixed_dofs();
+  if (!o.held_coordinates.empty()) {
+    if (o.held_coordinates.size() != fixed.size()) {
+      throw InvalidInput(fmt::format("equilibrium: {} held-coordinate flags for {} coordinates",
+                                     o.held_coordinates.size(), fixed.size()));
+    }
+    for (size_t k = 0; k < fixed.size(); ++k) fixed[k] = fixed[k] || o.held_coordinates[k];
+  }
   const double dhat = o.contact.distance_mm;
   ContactParams fp = o.contact;
   fp.friction_velocity_mm_s = o.friction_slip_mm;  // with h = 1: ε = the slip
@@ -236,7 +244,7 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
     const EvaluateEnergy evaluate = [&](const Eigen::VectorXd& y, Derivatives what) {
       EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
       add_membrane_energy(model, y, o.projection, ev);
-      add_bending_energy(model, y, ev);
+      add_bending_energy(model, y, ev, o.projection);
       if (o.gravity_mm_s2.norm() > 0) add_gravity_energy(model, y, o.gravity_mm_s2, ev);
       if (has_body) {
         const std::vector<ContactPair> pairs = find_contact_candidates(*support, y, dhat, ws.pinned_vertices());
@@ -248,10 +256,11 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
     const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return has_body ? collision_free_step(*support, a, b, ws.pinned_vertices()) : 1.0;
     };
-    const NewtonResult r = newton_solve(x, ws.fixed_dofs(), evaluate, max_step, o.newton, ws.solver());
+    const NewtonResult r = newton_solve(x, fixed, evaluate, max_step, o.newton, ws.solver());
     x = r.x;
     out.converged = r.converged;  // the last round decides
     out.iterations += r.iterations;
+    out.factorizations += r.factorizations;
     out.max_force_mn = r.max_force_mn;
     out.stop_reason = r.stop_reason;
     accumulate(out.seconds, r.seconds);

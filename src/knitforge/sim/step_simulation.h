@@ -101,12 +101,16 @@ struct EquilibriumOptions {
   NewtonOptions newton;
   PsdProjection projection = PsdProjection::Clamp;
   int friction_iterations = 3;
+  /// Coordinates held at their start values besides the pins: empty, or one
+  /// flag per coordinate (3n), e.g. free_body_constraints() (predict_shape.h).
+  std::vector<char> held_coordinates;
 };
 
 struct EquilibriumResult {
   Eigen::VectorXd positions_mm;
   bool converged = false;
   int iterations = 0;  ///< Newton iterations over all friction iterations
+  int factorizations = 0;  ///< Cholesky factorisations (more than iterations when shifts were needed)
   double energy = 0.0; ///< elastic energy at the end (µJ)
   double max_force_mn = 0.0;
   int contacts = 0;

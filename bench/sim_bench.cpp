@@ -1,0 +1,121 @@
+// Benchmarks of the fabric simulator (docs/sim.md): where a Newton
+// iteration's time goes (energy + Hessian assembly, Cholesky factorisation
+// with the symbolic analysis reused), a backward-Euler step of a sheet
+// draped on a dome, and the free predicted shape of the built-in cup map.
+//
+// Sizes: square sheets of N x N stitches of 3.5 x 2.8 mm (N = 32, 64, 128:
+// about 1k, 4k and 16k stitches).
+
+#include <benchmark/benchmark.h>
+
+#include "knitforge/convert/map_to_stitch_mesh.h"
+#include "knitforge/convert/relax_stitch_mesh.h"
+#include "knitforge/convert/sample_knitting_map.h"
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/sim/bending_energy.h"
+#include "knitforge/sim/membrane_energy.h"
+#include "knitforge/sim/predict_shape.h"
+#include "knitforge/sim/step_simulation.h"
+
+using namespace knitforge;
+
+namespace {
+
+const KnitParams kParams{};
+
+StitchMesh sheet(int n) {
+  StitchMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.vertices.emplace_back(kParams.stitch_width * i, kParams.stitch_height * j, 0.0);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      Stitch s;
+      s.type = StitchType::Knit;
+      s.v = {j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i};
+      s.course = j;
+      s.wale = i;
+      m.stitches.push_back(s);
+    }
+  }
+  return m;
+}
+
+Eigen::VectorXd stretched(const SimModel& model) {
+  Eigen::VectorXd x(3 * model.num_vertices());
+  for (int v = 0; v < model.num_vertices(); ++v) {
+    const Vec3 p = model.rest_positions[v];
+    x.segment<3>(3 * v) = Vec3(1.1 * p.x(), p.y(), 0.5 * std::sin(0.1 * p.x()));
+  }
+  return x;
+}
+
+void BM_AssembleEnergyHessian(benchmark::State& state) {
+  const SimModel model = build_sim_model(sheet(static_cast<int>(state.range(0))), kParams);
+  const auto pattern = build_hessian_pattern(model);
+  const Eigen::VectorXd x = stretched(model);
+  for (auto _ : state) {
+    EnergyEval ev(model.num_vertices(), Derivatives::Hessian, pattern);
+    add_membrane_energy(model, x, PsdProjection::Clamp, ev);
+    add_bending_energy(model, x, ev);
+    benchmark::DoNotOptimize(ev.value);
+  }
+  state.counters["stitches"] = static_cast<double>(model.num_elements()) / 2;
+}
+BENCHMARK(BM_AssembleEnergyHessian)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+
+void BM_FactorHessian(benchmark::State& state) {
+  const SimModel model = build_sim_model(sheet(static_cast<int>(state.range(0))), kParams);
+  const auto pattern = build_hessian_pattern(model);
+  const Eigen::VectorXd x = stretched(model);
+  EnergyEval ev(model.num_vertices(), Derivatives::Hessian, pattern);
+  add_membrane_energy(model, x, PsdProjection::Clamp, ev);
+  add_bending_energy(model, x, ev);
+  // A mass term keeps it positive definite, as in a time step.
+  for (int r = 0; r < 3 * model.num_vertices(); ++r) ev.hessian_values[pattern->diagonal_index(r)] += 1.0;
+  const SparseMatrix H = pattern->matrix(ev.hessian_values);
+  SparseSolver solver;
+  solver.factor(H);  // the symbolic analysis, once
+  for (auto _ : state) solver.factor(H);
+  state.counters["unknowns"] = 3.0 * model.num_vertices();
+}
+BENCHMARK(BM_FactorHessian)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+
+// One 1/60 s step of a 40 x 40 sheet (1600 stitches) falling onto a dome of
+// radius 50 mm, 20 steps in (in contact).
+void BM_DrapeStep(benchmark::State& state) {
+  const SimModel model = build_sim_model(sheet(40), kParams);
+  SimWorkspace ws(model);
+  const KinematicBody body(hemisphere(50.0, 4.0));
+  StepOptions o;
+  Eigen::VectorXd x(3 * model.num_vertices());
+  for (int v = 0; v < model.num_vertices(); ++v)
+    x.segment<3>(3 * v) = model.rest_positions[v] + Vec3(-70.0, -56.0, 50.4);
+  SimState s{x, Eigen::VectorXd::Zero(x.size()), 0.0};
+  for (int k = 0; k < 20; ++k) s = step_simulation(ws, s, body, {}, {}, o).state;
+  int iterations = 0, steps = 0;
+  for (auto _ : state) {
+    const StepResult r = step_simulation(ws, s, body, {}, {}, o);
+    iterations += r.newton_iterations;
+    ++steps;
+    benchmark::DoNotOptimize(r.energy);
+  }
+  state.counters["newton_per_step"] = static_cast<double>(iterations) / steps;
+}
+BENCHMARK(BM_DrapeStep)->Unit(benchmark::kMillisecond);
+
+// Free predicted shape of the cup map (1288 stitches) from its Shape-Up shape.
+void BM_PredictCup(benchmark::State& state) {
+  const StitchMesh start =
+      relax_stitch_mesh(map_to_stitch_mesh_topology(sample_knitting_map("cup"), kParams), kParams, RelaxOptions{}).mesh;
+  for (auto _ : state) {
+    const PredictResult r = predict_shape(start, kParams, nullptr);
+    state.counters["iterations"] = r.solve.iterations;
+    state.counters["converged"] = r.solve.converged;
+    state.counters["max_force_mN"] = r.solve.max_force_mn;
+  }
+}
+BENCHMARK(BM_PredictCup)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
