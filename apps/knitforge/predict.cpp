@@ -141,6 +141,9 @@ void add_predict_command(CLI::App& app, Action& action) {
                     {"gravity", o->gravity},
                     {"friction", o->friction},
                     {"lift_mm", r.lift_mm},
+                    {"settle_steps", r.settle_steps},
+                    {"settled", r.settled},
+                    {"settle_seconds", r.settle_seconds},
                     {"contact_distance_mm", po.equilibrium.contact.distance_mm},
                     {"material", po.model.materials[0].name}};
       j["solve"] = {{"converged", r.solve.converged},

@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "knitforge/util/errors.h"
+#include "knitforge/util/timer.h"
 
 namespace knitforge {
 
@@ -109,9 +110,44 @@ PredictResult predict_shape(const StitchMesh& designed, const KnitParams& params
       t.vertices = model.rest_positions;
       return bounding_box(t);
     }();
+    if (options.centre_on_support) {
+      const Vec3 shift = bounding_box(support->mesh()).center() - box.center();
+      for (int v = 0; v < model.num_vertices(); ++v) x0.segment<2>(3 * v) += shift.head<2>();
+    }
     out.lift_mm = lift_clear_of_body(*support, x0, options.start_gap_mm, 10.0 * std::max(box.diagonal(), 1.0));
     for (int v = 0; v < model.num_vertices(); ++v) x0[3 * v + 2] += out.lift_mm;
-    if (options.gravity) eo.gravity_mm_s2 = Vec3(0, 0, -9810.0);
+    if (options.gravity) {
+      eo.gravity_mm_s2 = Vec3(0, 0, -9810.0);
+      const Timer t;
+      StepOptions so = options.settle;
+      so.gravity_mm_s2 = eo.gravity_mm_s2;
+      so.contact = eo.contact;
+      SimState s{x0, Eigen::VectorXd::Zero(x0.size()), 0.0};
+      double last_kinetic = 0.0;
+      out.settled = false;
+      for (int k = 0; k < options.max_settle_steps; ++k) {
+        s = step_simulation(ws, s, *support, {}, {}, so).state;
+        ++out.settle_steps;
+        double kinetic = 0.0, speed = 0.0;
+        for (int v = 0; v < model.num_vertices(); ++v) {
+          const double v2 = s.velocities_mm_s.segment<3>(3 * v).squaredNorm();
+          kinetic += 0.5 * model.vertex_mass_kg[v] * v2;
+          speed = std::max(speed, std::sqrt(v2));
+        }
+        if (k >= 2 && speed < options.settle_speed_mm_s) {
+          out.settled = true;
+          break;
+        }
+        // Kinetic damping: past a peak of the kinetic energy, start again at rest.
+        if (kinetic < last_kinetic) {
+          s.velocities_mm_s.setZero();
+          kinetic = 0.0;
+        }
+        last_kinetic = kinetic;
+      }
+      x0 = s.positions_mm;
+      out.settle_seconds = t.seconds();
+    }
   } else {
     eo.held_coordinates = free_body_constraints(x0);
     eo.gravity_mm_s2 = Vec3::Zero();

@@ -11,10 +11,16 @@
 ///    the farthest from it, one of the farthest from their line). They
 ///    carry no force at a free equilibrium, and the result reports the
 ///    largest force on any other coordinate.
-///  - On a support: the piece is first lifted along +z by the least amount
+///  - On a support: the piece is first centred above it (x, y of the
+///    bounding-box centres; optional) and lifted along +z by the least amount
 ///    that puts every vertex on the support's outer side (the side its face
-///    normals point to) at a distance of at least `start_gap_mm`; then
-///    gravity, contact (barrier) and static friction act.
+///    normals point to) at a distance of at least `start_gap_mm`; then it
+///    settles by backward-Euler steps of 1/60 s with kinetic damping (the
+///    velocities are zeroed whenever the kinetic energy passes a peak; a
+///    dynamic relaxation) until no vertex moves faster than
+///    `settle_speed_mm_s`, and the static equilibrium (gravity, contact
+///    barrier, static friction with the settled normal forces) is solved
+///    from there by Newton.
 ///
 /// The result says whether Newton converged (largest free vertex force at
 /// most the tolerance, mN) and how many iterations it took; a shape that did
@@ -44,12 +50,26 @@ struct PredictOptions {
   /// be below the contact distance so the barrier holds the piece from the
   /// first iteration.
   double start_gap_mm = 0.3;
+  /// On a support: first move the piece in x and y so that the centre of its
+  /// bounding box is above the centre of the support's.
+  bool centre_on_support = true;
+  /// Settling (on a support): stop when every vertex is slower than this.
+  double settle_speed_mm_s = 1.0;
+  int max_settle_steps = 600;  ///< 10 s of simulated time
+  StepOptions settle = [] {
+    StepOptions s;
+    s.newton.force_tolerance_mn = 1e-5;
+    return s;
+  }();
 };
 
 struct PredictResult {
   StitchMesh predicted;  ///< the designed mesh with the equilibrium positions
   EquilibriumResult solve;
   double lift_mm = 0.0;  ///< how far the piece was lifted onto the support
+  int settle_steps = 0;  ///< time steps of the settling (0 when free)
+  bool settled = true;   ///< the settling reached settle_speed_mm_s
+  double settle_seconds = 0.0;
   /// Per stitch: the largest principal Cauchy stress of its triangles (kPa),
   /// and its largest course and wale strains.
   std::vector<double> stitch_stress_kpa;

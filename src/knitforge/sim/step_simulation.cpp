@@ -236,8 +236,9 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
   const int rounds = has_body && o.contact.friction > 0 ? std::max(1, o.friction_iterations) : 1;
   for (int fi = 0; fi < rounds; ++fi) {
     std::vector<FrictionPair> friction;
-    if (has_body && o.contact.friction > 0 && fi > 0) {
-      // Normal forces of the last solution; the slip is measured from the start.
+    if (has_body && o.contact.friction > 0) {
+      // Normal forces of the start (round 0) or of the last solution; the
+      // slip is measured from the start.
       const std::vector<ContactPair> c = find_contact_candidates(*support, x, dhat, ws.pinned_vertices());
       friction = build_friction_pairs(model, c, *support, *support, x, fp);
     }

@@ -21,7 +21,11 @@
 ///
 /// Static equilibrium (solve_equilibrium()) minimises membrane + bending
 /// (+ gravity + contact + friction against slipping from the start) over x;
-/// a free piece without gravity settles where its stitches balance.
+/// a free piece without gravity settles where its stitches balance. Friction
+/// in statics takes its normal forces from the start in the first round and
+/// from the last solution in the next ones, so start from a settled state
+/// (settle_on_support()): from a piece barely touching a smooth support the
+/// first round is nearly frictionless and the piece may slide off.
 
 #include <memory>
 #include <string>
