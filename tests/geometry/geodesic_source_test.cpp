@@ -78,6 +78,32 @@ TEST(GeodesicSource, BoundaryFractionsAndWrap) {
   EXPECT_THROW(source_from_boundary(test::tetrahedron(), 0.2, 0.4), InvalidInput);  // no boundary loop
 }
 
+// Vertex paths: a row of grid vertices is the same source as the plane
+// through it (same field), signed with the left of the path positive; a
+// path that does not cross the surface is unsigned.
+TEST(GeodesicSource, VertexPaths) {
+  const TriMesh m = test::square_grid(6, 1.0);
+  std::vector<int> row;
+  for (int i = 0; i <= 6; ++i) row.push_back(2 * 7 + i);  // y = 2, walking towards +x
+  const GeodesicSource src = source_from_vertex_paths(m, {row}, "row y = 2");
+  EXPECT_EQ(src.description, "row y = 2");
+  ASSERT_EQ(src.vertex_side.size(), static_cast<size_t>(m.num_vertices()));
+  const GeodesicField f = geodesic_distance(m, src);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    EXPECT_NEAR(f.distance[v], m.vertices[v].y() - 2.0, 1e-12) << v;  // +y is left of +x (normal +z)
+    EXPECT_EQ(src.vertex_side[v], m.vertices[v].y() > 2.0 ? 1 : (m.vertices[v].y() < 2.0 ? -1 : 0));
+  }
+  EXPECT_EQ(source_sides(m, src), src.vertex_side);
+  const GeodesicSource part = source_from_vertex_paths(m, {{16, 17, 18}}, "part");
+  EXPECT_TRUE(part.vertex_side.empty());
+  const GeodesicSource point = source_from_vertex_paths(m, {{24}}, "point");
+  ASSERT_EQ(point.polylines.size(), 1u);
+  EXPECT_EQ(point.polylines[0].size(), 1u);
+  EXPECT_THROW(source_from_vertex_paths(m, {{0, 30}}, "gap"), InvalidInput);
+  EXPECT_THROW(source_from_vertex_paths(m, {{0, 99}}, "range"), InvalidInput);
+  EXPECT_THROW(source_from_vertex_paths(m, {{}}, "empty"), InvalidInput);
+}
+
 TEST(GeodesicSource, ErrorCases) {
   const TriMesh m = test::square_grid(4, 1.0);
   EXPECT_THROW(source_from_plane(m, Vec3(1, 0, 0), 7.0), InvalidInput);  // misses: x in [0, 4]

@@ -103,11 +103,60 @@ std::vector<std::vector<SurfacePoint>> chain_segments(const std::vector<SurfaceP
   return out;
 }
 
-// Per-vertex sides of a source on the surface, or empty when it does not cut
-// the surface into exactly two parts. `on_source`: vertices on the source;
-// `crossed`: edges (a < b) whose interior the source crosses. The side on
-// the left of the first non-degenerate segment (looking along the normal) is +1.
-std::vector<signed char> sides_from_cut(const TriMesh& mesh, const GeodesicSource& src) {
+// Ericson's closest point on a triangle, returning barycentric coordinates
+// with exact zeros on edges and vertices.
+Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0.0)) {  // degenerate triangle: best of the three edges
+    Vec3 best(1, 0, 0);
+    double bd = (p - a).squaredNorm();
+    const Vec3 pts[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& u = pts[k];
+      const Vec3& w = pts[(k + 1) % 3];
+      const double len2 = (w - u).squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((p - u).dot(w - u) / len2, 0.0, 1.0) : 0.0;
+      const double d = (p - (u + t * (w - u))).squaredNorm();
+      if (d < bd) {
+        bd = d;
+        best = Vec3::Zero();
+        best[k] = 1 - t;
+        best[(k + 1) % 3] = t;
+      }
+    }
+    return best;
+  }
+  const double v = vb / denom, w = vc / denom;
+  return {1 - v - w, v, w};
+}
+
+}  // namespace
+
+std::vector<signed char> source_sides(const TriMesh& mesh, const GeodesicSource& src) {
   const int nv = mesh.num_vertices();
   std::vector<char> on_source(nv, 0);
   std::map<std::pair<int, int>, char> crossed;
@@ -185,59 +234,6 @@ std::vector<signed char> sides_from_cut(const TriMesh& mesh, const GeodesicSourc
   }
   return {};
 }
-
-// Ericson's closest point on a triangle, returning barycentric coordinates
-// with exact zeros on edges and vertices.
-Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return {1, 0, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0.0)) {  // degenerate triangle: best of the three edges
-    Vec3 best(1, 0, 0);
-    double bd = (p - a).squaredNorm();
-    const Vec3 pts[3] = {a, b, c};
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& u = pts[k];
-      const Vec3& w = pts[(k + 1) % 3];
-      const double len2 = (w - u).squaredNorm();
-      const double t = len2 > 0.0 ? std::clamp((p - u).dot(w - u) / len2, 0.0, 1.0) : 0.0;
-      const double d = (p - (u + t * (w - u))).squaredNorm();
-      if (d < bd) {
-        bd = d;
-        best = Vec3::Zero();
-        best[k] = 1 - t;
-        best[(k + 1) % 3] = t;
-      }
-    }
-    return best;
-  }
-  const double v = vb / denom, w = vc / denom;
-  return {1 - v - w, v, w};
-}
-
-}  // namespace
 
 int GeodesicSource::num_segments() const {
   int n = 0;
@@ -504,6 +500,45 @@ GeodesicSource source_from_boundary_vertices(const TriMesh& mesh, const std::vec
   return src;
 }
 
+GeodesicSource source_from_vertex_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths,
+                                       const std::string& description) {
+  if (mesh.faces.empty()) throw InvalidInput("vertex path source: the mesh has no faces");
+  check_face_indices(mesh);
+  const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
+  GeodesicSource src;
+  src.description = description;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::vector<int>& path = paths[i];
+    if (path.empty()) continue;
+    for (int v : path) {
+      if (v < 0 || v >= mesh.num_vertices() || he.is_isolated_vertex(v))
+        throw InvalidInput(
+            fmt::format("vertex path source: path {} uses vertex {}, which is not a vertex of the surface", i, v));
+    }
+    std::vector<SurfacePoint> line;
+    if (path.size() == 1) {
+      line.push_back(surface_point_at_vertex(mesh, path[0]));
+    }
+    for (size_t k = 0; k + 1 < path.size(); ++k) {
+      const int a = path[k], b = path[k + 1];
+      // A face holding the edge a-b expresses both ends.
+      int face = -1;
+      for (int f : he.vertex_faces(a))
+        if (corner_of(mesh, f, b) >= 0) face = f;
+      if (face < 0 || a == b)
+        throw InvalidInput(fmt::format(
+            "vertex path source: vertices {} and {} (positions {} and {} of path {}) are not joined by an edge", a,
+            b, k, k + 1, i));
+      if (k == 0) line.push_back(point_in_face(mesh, face, a, a, 0.0));
+      line.push_back(point_in_face(mesh, face, b, b, 0.0));
+    }
+    src.polylines.push_back(std::move(line));
+  }
+  if (src.polylines.empty()) throw InvalidInput("vertex path source: no path has a vertex");
+  src.vertex_side = source_sides(mesh, src);
+  return src;
+}
+
 GeodesicSource source_from_vertex(const TriMesh& mesh, int v) {
   GeodesicSource src;
   src.polylines.push_back({surface_point_at_vertex(mesh, v)});
@@ -637,7 +672,7 @@ GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>
   GeodesicSource src;
   src.polylines.push_back(std::move(line));
   src.description = fmt::format("polyline of {} points", points.size());
-  src.vertex_side = sides_from_cut(mesh, src);
+  src.vertex_side = source_sides(mesh, src);
   return src;
 }
 

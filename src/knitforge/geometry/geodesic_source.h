@@ -112,6 +112,25 @@ GeodesicSource source_from_boundary_vertices(const TriMesh& mesh, const std::vec
 /// \throw InvalidInput when v is out of range or used by no face.
 GeodesicSource source_from_vertex(const TriMesh& mesh, int v);
 
+/// Paths of mesh vertices (consecutive vertices joined by a mesh edge; a
+/// path of one vertex is a point source), e.g. a source carried over to a
+/// surface that was cut open (cut_to_disk.h). Signed when the paths cut
+/// the surface into exactly two parts (source_sides()).
+/// \throw InvalidInput when a vertex is out of range or used by no face,
+///        two consecutive vertices are not joined by an edge, or no path
+///        has a vertex; TopologyError from build_halfedges().
+GeodesicSource source_from_vertex_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths,
+                                       const std::string& description);
+
+/// The per-vertex sides of a source (GeodesicSource::vertex_side) when its
+/// polylines cut the surface into exactly two parts (the vertices used by
+/// faces, minus those on the source, fall into two components across edges
+/// the source neither ends on nor crosses); empty otherwise. The part on the
+/// left of the first segment of positive length (looking along the face
+/// normal) is +1, vertices on the source are 0.
+/// \pre the source points are valid for `mesh`.
+std::vector<signed char> source_sides(const TriMesh& mesh, const GeodesicSource& source);
+
 /// A 3D polyline projected onto the surface: every point goes to its closest
 /// surface point; consecutive projected points are joined along the surface by
 /// the intersection of the surface with the plane through both points that
