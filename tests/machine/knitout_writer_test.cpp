@@ -345,3 +345,46 @@ TEST(KnitoutWriterSimulated, RandomMapsSimulateCleanAndMatchTheMap) {
 
 }  // namespace
 }  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+// Runs of wales ending together at the fabric edge (the edge runs along the
+// course there, as at the rim of an opening): merging them all onto the
+// neighbour would stack 4 loops and pull stitches with a free top edge into
+// the next course, so all but the wale next to the continuing fabric are
+// bound off by a chain: during the course when the run is where the course
+// starts, after it when the run is where it ends. Before, such maps failed
+// ("cannot be merged ... without stacking more than 3 loops"), and runs of
+// two simulated with a wale mismatch.
+TEST(KnitoutWriterSimulated, EdgeRunsOfEndingWalesAreBoundOffByAChain) {
+  struct Case {
+    const char* what;
+    KnittingMap map;
+    int bound_off;
+    const char* comment;
+  };
+  const std::vector<Case> cases = {
+      {"left run, start of the course", test::parse_map({"___KKK", "___KKK", "KKKKKK"}), 2,
+       "; bind-off during course 0"},
+      {"right run, end of the course", test::parse_map({"KKK___", "KKK___", "KKKKKK"}), 2,
+       "; bind-off after course 0"},
+      {"right run of two", test::parse_map({"KKKK__", "KKKK__", "KKKKKK"}), 1, "; bind-off after course 0"},
+      {"left run of five", test::parse_map({"_____KK", "_____KK", "KKKKKKK"}), 4, "; bind-off during course 0"},
+  };
+  for (const Case& c : cases) {
+    for (const char* name : {"shima-swg091n2", "kniterate"}) {
+      expect_simulates(c.map, machine_profile(name), {}, c.what);
+      const KnitoutProgram p = write_knitout(c.map, machine_profile(name));
+      EXPECT_EQ(p.stats.bound_off, c.bound_off) << c.what;
+      EXPECT_NE(p.text.find(c.comment), std::string::npos) << c.what;
+    }
+    const NeedleLayout L = plan_needle_layout(c.map);
+    ASSERT_EQ(L.transitions[1].bind_offs.size(), 1u) << c.what;
+    EXPECT_EQ(static_cast<int>(L.transitions[1].bind_offs[0].cols.size()), c.bound_off);
+    EXPECT_EQ(L.transitions[1].merges.size(), 1u) << c.what;  // the wale next to the fabric
+  }
+}
+
+}  // namespace
+}  // namespace knitforge

@@ -208,6 +208,18 @@ HandInstructions hand_instructions(const KnittingMap& map, const MachineProfile&
     hr.knit = fmt::format("Carriage {}: knit {} to {} ({} stitch{})",
                           hr.direction > 0 ? "left -> right" : "right -> left", lab(a), lab(b), nst,
                           nst == 1 ? "" : "es");
+    if (r + 1 < map.rows) {
+      for (const auto& b : L.transitions[r + 1].bind_offs) {
+        std::vector<int> ks;
+        for (int c : b.cols) ks.push_back(K(r, c));
+        std::sort(ks.begin(), ks.end());
+        hr.after.push_back(fmt::format(
+            "Bind off needle{} {} ({} stitch{}, chain cast-off {} the fabric edge) and put the last loop onto {}",
+            ks.size() == 1 ? "" : "s", runs_label(ks, NB), ks.size(), ks.size() == 1 ? "" : "es",
+            b.during_row ? "towards" : "from", lab(K(r, b.onto_col))));
+        H.hand_transfers += static_cast<int>(ks.size());
+      }
+    }
     if (L.closure_col[r] >= 0) {
       hr.after.push_back(fmt::format(
           "Short-row turn: wrap the yarn under held needle {} before the next row (no hole)",

@@ -231,6 +231,7 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
       for (const auto& m : T.merges)
         what += fmt::format(" decrease col {} onto col {} (f{});", m.col, m.onto_col,
                             N(r, m.onto_col));
+      for (const auto& b : T.bind_offs) what += fmt::format(" {} col(s) bound off;", b.cols.size());
       e.comment(fmt::format("transfers before course {}:{} {} loop moves in {} step(s), pivot col {} stays on f{}",
                             r, what, moves, T.steps.size(), T.pivot_col,
                             T.pivot_needle + offset));
@@ -265,6 +266,27 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
                           N(r, L.last_col[r]),
                           held ? fmt::format(", short row ({} held loops)", held) : std::string()));
     const std::vector<int>& starts = T.starts;
+    // Bind-off chains after this row's last stitches (needle_layout.h):
+    // during the row, col -> the needle its bind-off loop moves to.
+    static const std::vector<LayoutBindOff> kNoBindOffs;
+    const std::vector<LayoutBindOff>& chains = r + 1 < map.rows ? L.transitions[r + 1].bind_offs : kNoBindOffs;
+    std::map<int, int> chain_next;
+    for (const auto& b : chains) {
+      if (!b.during_row) continue;
+      for (size_t i = 0; i < b.cols.size(); ++i)
+        chain_next[b.cols[i]] = i + 1 < b.cols.size() ? b.cols[i + 1] : b.onto_col;
+    }
+    // A bind-off step: knit needle n once more (the loop that secures it),
+    // then move that loop onto needle `to` (a neighbour).
+    auto bind_off_step = [&](int dir, int n, int to, bool knit) {
+      if (knit) e.knit(dir, n, M);
+      e.rack(0);
+      e.xfer_to_back(n);
+      e.rack(to - n);
+      e.xfer_to_front(n, to);
+      e.rack(0);
+      st.transfer_passes += 2;
+    };
     auto do_cell = [&](int c) {
       if (!is_stitch(map.at(r, c))) return;
       const bool first = r > 0 && std::binary_search(starts.begin(), starts.end(), c);
@@ -274,6 +296,12 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
       } else {
         e.knit(d, N(r, c), M);
         ++st.map_knits;
+      }
+      if (const auto it = chain_next.find(c); it != chain_next.end()) {
+        e.comment(fmt::format("bind-off during course {}: col {} (f{}) knitted again, its loop onto col {} (f{})",
+                              r, c, N(r, c), it->second, N(r, it->second)));
+        bind_off_step(d, N(r, c), N(r, it->second), true);
+        e.comment(fmt::format("course {} (continued)", r));
       }
     };
     if (d > 0)
@@ -295,6 +323,17 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
                               opt.close_turns ? "the held needle is at its loop limit"
                                               : "turn closure disabled"));
         ++st.open_turns;
+      }
+    }
+    for (const auto& b : chains) {
+      if (b.during_row) continue;
+      // Back from the fabric edge (where the carrier is) towards onto_col.
+      e.comment(fmt::format("bind-off after course {}: cols {}..{} (f{}..f{}) by a chain onto col {} (f{})", r,
+                            b.cols.front(), b.cols.back(), N(r, b.cols.front()), N(r, b.cols.back()), b.onto_col,
+                            N(r, b.onto_col)));
+      for (size_t i = 0; i < b.cols.size(); ++i) {
+        const int to = i + 1 < b.cols.size() ? b.cols[i + 1] : b.onto_col;
+        bind_off_step(-d, N(r, b.cols[i]), N(r, to), true);
       }
     }
   }
@@ -370,6 +409,7 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
 
   st.increases = L.increases;
   st.decreases = L.decreases;
+  st.bound_off = L.bound_off;
   st.first_needle = L.min_needle + offset;
   st.last_needle = L.max_needle + offset;
   prog.text = std::move(e.out);

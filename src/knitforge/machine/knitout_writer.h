@@ -24,6 +24,12 @@
 ///     wale's first stitch (Increase or outside increase: the stitch has no
 ///     loop below), `knit` for every other stitch (a needle holding a merged
 ///     Decrease loop knits both loops together).
+///     Wales that end at a free top edge in a run (needle_layout.h) are
+///     bound off: during the row (`; bind-off during course r`: the
+///     stitch, one more `knit` on its needle, its loop moved onto the next
+///     wale's needle, then `; course r (continued)`) or after it (`; bind-off
+///     after course r`: the same steps back from the fabric edge). These
+///     loops are not fabric loops (knit_graph_compare.h).
 ///  4. `; turn after course r ...` when the row ends inside the fabric: a
 ///     `tuck` on the first held needle beyond the turn closes the hole
 ///     (see needle_layout.h; omitted, with a comment, when the needle already
@@ -94,6 +100,7 @@ struct KnitoutStats {
   int transfer_passes = 0;     ///< groups of transfers at one racking
   int increases = 0;           ///< wale starts (interior and edge)
   int decreases = 0;           ///< wale ends merged onto a neighbour
+  int bound_off = 0;           ///< wale ends bound off by a chain (needle_layout.h)
   int inside_turns = 0;        ///< short-row turns inside the fabric
   int closed_turns = 0;        ///< turns closed by a tuck
   int open_turns = 0;          ///< turns left open (loop limit)

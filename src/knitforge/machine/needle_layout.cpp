@@ -149,20 +149,10 @@ NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOption
       const int ip = static_cast<int>(std::find(B.begin(), B.end(), pivot) - B.begin());
       for (int i = 0; i < static_cast<int>(B.size()); ++i) newpos[B[i]] = pos[pivot] + (i - ip);
     }
-    // ending wales -> merge targets
+    // ending wales -> merge targets, or bind-off chains for runs of them
     std::vector<std::pair<int, int>> movers;  // (col, displacement)
-    for (int c : A) {
-      if (is_alive(r + 1, c)) continue;
-      // nearest continuing wales left and right
-      auto right_it = std::upper_bound(cont.begin(), cont.end(), c);
-      const int right = right_it == cont.end() ? -1 : *right_it;
-      const int left = right_it == cont.begin() ? -1 : *(right_it - 1);
-      const int first = c < pivot ? right : left;
-      const int second = c < pivot ? left : right;
-      int target = -1;
-      for (int t : {first, second})
-        if (target < 0 && t >= 0 && loops[t] + loops[c] <= opt.max_stack) target = t;
-      if (target < 0)
+    auto merge = [&](int c, int target) {
+      if (loops[target] + loops[c] > opt.max_stack)
         throw InvalidInput(fmt::format(
             "knitting map row {}, column {}: the wale ends here but its loops cannot be merged "
             "onto a neighbour without stacking more than {} loops on one needle; end fewer "
@@ -173,6 +163,55 @@ NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOption
       T.merges.push_back({c, target});
       movers.emplace_back(c, newpos[target] - pos[c]);
       ++L.decreases;
+    };
+    // Runs of ending wales: consecutive in A (the alive wales of row r).
+    for (size_t i = 0; i < A.size();) {
+      if (is_alive(r + 1, A[i])) {
+        ++i;
+        continue;
+      }
+      size_t j = i;
+      while (j + 1 < A.size() && !is_alive(r + 1, A[j + 1])) ++j;
+      const std::vector<int> run(A.begin() + static_cast<long>(i), A.begin() + static_cast<long>(j) + 1);
+      const int left = i > 0 ? A[i - 1] : -1;               // continuing, by maximality
+      const int right = j + 1 < A.size() ? A[j + 1] : -1;
+      const size_t k = run.size();
+      i = j + 1;
+      if (k == 1 || (k == 2 && left >= 0 && right >= 0)) {
+        for (int c : run) {
+          // nearest continuing wales left and right
+          const int first = c < pivot ? right : left;
+          const int second = c < pivot ? left : right;
+          int target = -1;
+          for (int t : {first, second})
+            if (target < 0 && t >= 0 && loops[t] + loops[c] <= opt.max_stack) target = t;
+          merge(c, target >= 0 ? target : (first >= 0 ? first : second));
+        }
+        continue;
+      }
+      // In knitting order: u[0] comes first in row r.
+      const int d = map.direction[r];
+      std::vector<int> u = run;
+      if (d < 0) std::reverse(u.begin(), u.end());
+      const int before = d > 0 ? left : right, after = d > 0 ? right : left;
+      LayoutBindOff b;
+      if (after >= 0) {
+        // The chain runs with the row, onto the last wale of the run.
+        b.during_row = true;
+        b.cols.assign(u.begin() + (before >= 0 ? 1 : 0), u.end() - 1);
+        b.onto_col = u.back();
+        if (before >= 0) merge(u.front(), before);
+        merge(u.back(), after);
+      } else {
+        // The run ends the row at the fabric edge: the chain runs back.
+        b.cols.assign(u.rbegin(), u.rend() - 1);
+        b.onto_col = u.front();
+        ++loops[u.front()];
+        merge(u.front(), before);
+      }
+      for (int c : b.cols) loops[c] = 0;
+      L.bound_off += static_cast<int>(b.cols.size());
+      T.bind_offs.push_back(std::move(b));
     }
     for (int c : cont)
       if (newpos[c] != pos[c]) movers.emplace_back(c, newpos[c] - pos[c]);
@@ -197,6 +236,8 @@ NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOption
       T.steps.push_back(std::move(step));
     }
     for (const auto& m : T.merges) pos[m.col] = kNoNeedle;
+    for (const auto& b : T.bind_offs)
+      for (int c : b.cols) pos[c] = kNoNeedle;
     for (int c : B) {
       pos[c] = newpos[c];
       track(pos[c]);

@@ -19,6 +19,20 @@
 ///    column stops at the fabric edge: outside decrease); its loops are moved
 ///    onto the needle of a continuing neighbour, so the next stitch of that
 ///    neighbour is knitted through both (knit two together);
+///  - a run of neighbouring wales that end together (the fabric edge runs
+///    along the course there, e.g. the rim of an opening): only the wales
+///    of the run next to a continuing wale have a stitch above a top corner
+///    and merge (onto that neighbour); the others have a free top edge and
+///    are *bound off* by a chain (LayoutBindOff): each is knitted once more
+///    (a bind-off loop that secures it), that loop moves onto the next wale
+///    of the chain and so on, and the last one onto the run's end wale next
+///    to a continuing wale. When that wale comes after the run in the row's
+///    knitting order, the chain is knitted as the row is (each free wale:
+///    its stitch, then its bind-off knit and the transfer onto the next
+///    needle); otherwise after the row, back from the fabric edge where the
+///    carrier is. Merging them all onto the neighbour instead would stack
+///    more loops than a needle takes and pull stitches with a free top edge
+///    into the next course;
 ///  - everything else keeps its order and closes up to consecutive needles.
 ///
 /// Left/right rule (seed §1.4.2, "choose according to the location of
@@ -78,10 +92,24 @@ struct LayoutMerge {
   int onto_col = -1;
 };
 
+/// Wales with a free top edge bound off by a chain after their last row
+/// (see the file comment).
+struct LayoutBindOff {
+  /// The bound-off wales in chain order (each is knitted once more, the new
+  /// loop moves onto the needle of the next, then of onto_col).
+  std::vector<int> cols;
+  int onto_col = -1;  ///< the ending wale the chain's last loop moves onto
+  /// True: knitted during the row (in its direction, each wale right after
+  /// its stitch; onto_col's stitch comes after the chain). False: after the
+  /// row, against its direction, starting at the fabric edge.
+  bool during_row = false;
+};
+
 /// The layout change between row r-1 and row r (transitions[0] is empty).
 struct LayoutTransition {
   std::vector<int> starts;           ///< wales starting at row r (need an empty needle)
-  std::vector<LayoutMerge> merges;   ///< wales ending after row r-1
+  std::vector<LayoutMerge> merges;   ///< wales ending after row r-1 merged onto a continuing one
+  std::vector<LayoutBindOff> bind_offs;  ///< wales ending after row r-1 bound off (chains of row r-1)
   std::vector<LayoutStep> steps;     ///< transfer steps, in order
   int pivot_col = -1;                ///< the wale that does not move (-1 for r = 0)
   int pivot_needle = 0;              ///< its needle
@@ -115,6 +143,7 @@ struct NeedleLayout {
   int max_needle = 0;          ///< largest needle used at any time
   int increases = 0;           ///< starting wales (interior and edge)
   int decreases = 0;           ///< ending wales merged onto a neighbour
+  int bound_off = 0;           ///< ending wales bound off by a chain
   int loop_moves = 0;          ///< moves over all steps (each is 2 transfers)
 
   int needle_at(int r, int c) const { return needle[static_cast<size_t>(r) * cols + c]; }
