@@ -9,11 +9,14 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/prepare_surface.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/io/io_detail.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
 #include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
 #include "knitforge/io/ply_format.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/util/atomic_file.h"
@@ -115,6 +118,45 @@ TriMesh load_surface_or_shape(const std::string& input, const std::string& units
   throw InvalidInput(fmt::format("{}: no such file, and not a built-in shape ({})", input, names));
 }
 
+TriMesh load_design_surface(const std::string& input, const std::string& units, double edge,
+                            std::string& description, bool* builtin, std::vector<int>* vertex_map) {
+  const TriMesh raw = load_surface_or_shape(input, units, edge, description, builtin);
+  PreparedSurface p = prepare_surface(raw);
+  if (p.unused_vertices > 0 || p.welded_vertices > 0) {
+    std::string what;
+    if (p.unused_vertices > 0) what = fmt::format("dropped {} vertices used by no face", p.unused_vertices);
+    if (p.welded_vertices > 0) {
+      what += fmt::format("{}welded {} vertices that repeat another's position (a split seam)",
+                          what.empty() ? "" : "; ", p.welded_vertices);
+    }
+    note(fmt::format("{}: {}", description, what));
+  }
+  if (vertex_map) *vertex_map = std::move(p.vertex_map);
+  return std::move(p.mesh);
+}
+
+GeodesicSource symmetry_plane_source(const TriMesh& mesh) {
+  const BoundingBox box = bounding_box(mesh);
+  return source_from_plane(mesh, Vec3(1, 0, 0), 0.5 * (box.min.x() + box.max.x()));
+}
+
+std::vector<std::vector<Vec3>> read_cuts(const std::string& path, double scale) {
+  const auto lines = read_polylines_obj(path);
+  if (lines.empty()) throw InvalidInput(path + ": no polyline (l element) to cut along");
+  std::vector<std::vector<Vec3>> out;
+  for (const auto& line : lines) {
+    out.push_back(line.points);
+    for (Vec3& p : out.back()) p *= scale;
+  }
+  return out;
+}
+
+CLI::Option* add_cut_option(CLI::App& cmd, std::string& value) {
+  return cmd.add_option("--cut", value,
+                        "Cut the surface open along the polylines of FILE.obj first (your own seams); without it, "
+                        "a surface that is not a disk is cut into one automatically");
+}
+
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value) {
   return cmd.add_option("--stitch", value, "Stitch size WIDTHxHEIGHT in mm (default 3.5x2.8)");
 }
@@ -124,6 +166,20 @@ bool is_stitch_mesh_ply(const std::string& path) {
   const ply_detail::PlyHeader header = ply_detail::read_ply_header(path, data);
   const int face = header.find("face");
   return face >= 0 && header.elements[face].find("type") >= 0;
+}
+
+nlohmann::json seams_json(const std::vector<Seam>& seams) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Seam& s : seams) {
+    const Vec3& a = s.path.front();
+    const Vec3& b = s.path.back();
+    list.push_back({{"kind", to_string(s.kind)},
+                    {"on_source", s.on_source},
+                    {"length_mm", s.length},
+                    {"from_mm", {a.x(), a.y(), a.z()}},
+                    {"to_mm", {b.x(), b.y(), b.z()}}});
+  }
+  return {{"count", static_cast<int>(seams.size())}, {"length_mm", seam_length(seams)}, {"seams", list}};
 }
 
 nlohmann::json scalar_stats_json(const ScalarStats& s) {

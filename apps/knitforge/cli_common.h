@@ -14,6 +14,8 @@
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
 #include "knitforge/evaluate/scalar_stats.h"
+#include "knitforge/geometry/cut_to_disk.h"
+#include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/util/errors.h"
 
@@ -78,12 +80,36 @@ TriMesh load_surface(const std::string& path, const std::string& units);
 TriMesh load_surface_or_shape(const std::string& input, const std::string& units, double edge,
                               std::string& description, bool* builtin = nullptr);
 
+/// The input of a design command: load_surface_or_shape(), then
+/// prepare_surface() (unused vertices dropped, split vertices welded; a
+/// note says what changed). `vertex_map` (optional) receives, for every
+/// vertex of the file, its index in the returned mesh or -1.
+TriMesh load_design_surface(const std::string& input, const std::string& units, double edge,
+                            std::string& description, bool* builtin = nullptr,
+                            std::vector<int>* vertex_map = nullptr);
+
+/// The plane x = centre of the bounding box as a source (the default source
+/// of `shortrow`, and where `flatten` prefers its seams: garments are
+/// usually modelled symmetric about x = 0).
+GeodesicSource symmetry_plane_source(const TriMesh& mesh);
+
+/// The polylines of a --cut file (OBJ `l` elements), scaled to mm.
+/// \throw InvalidInput when the file has no polyline.
+std::vector<std::vector<Vec3>> read_cuts(const std::string& path, double scale);
+
+/// Adds the standard "--cut FILE.obj" option of the design commands.
+CLI::Option* add_cut_option(CLI::App& cmd, std::string& value);
+
 /// Adds the standard "--stitch WxH" option.
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);
 
 /// Writes a design command's report (indented JSON) to `path` atomically
 /// and, when `print` (--json), also to stdout.
 void write_report_json(const std::string& path, const nlohmann::json& report, bool print);
+
+/// The seams of a design for report.json: count, total length (mm) and one
+/// entry per seam (kind, on_source, length_mm, end points).
+nlohmann::json seams_json(const std::vector<Seam>& seams);
 
 /// Statistics for a report: count, min, mean, rms, max, p50, p90, p99.
 nlohmann::json scalar_stats_json(const ScalarStats& s);

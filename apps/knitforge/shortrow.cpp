@@ -1,5 +1,6 @@
 // knitforge shortrow: 3D surface -> short-row stitch mesh and knitting map
 // (seed §3.2), with evaluation and a report.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -16,11 +17,8 @@
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/evaluate/stitch_distortion.h"
-#include "knitforge/geometry/cut_mesh_along_path.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/shapes.h"
-#include "knitforge/geometry/split_mesh_along_path.h"
-#include "knitforge/geometry/surface_checks.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
@@ -50,14 +48,22 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
   return out;
 }
 
-/// --source TEXT (coordinates in the input's units, scaled by `scale`).
-GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
-  if (text.empty()) {
-    const BoundingBox box = bounding_box(mesh);
-    const double cx = 0.5 * (box.min.x() + box.max.x());
-    GeodesicSource s = source_from_plane(mesh, Vec3(1, 0, 0), cx);
-    return s;
+/// A vertex id of the input file as a vertex of the prepared mesh.
+int mapped_vertex(const std::vector<int>& vertex_map, double id, const std::string& what) {
+  if (!(id >= 0 && id < static_cast<double>(vertex_map.size())) || id != std::floor(id)) {
+    throw InvalidInput(fmt::format("--source {}: vertex id {} is not a vertex of the input (ids 0 to {})", what, id,
+                                   vertex_map.size() - 1));
   }
+  const int v = vertex_map[static_cast<size_t>(id)];
+  if (v < 0) throw InvalidInput(fmt::format("--source {}: vertex {} is used by no face", what, id));
+  return v;
+}
+
+/// --source TEXT (coordinates in the input's units, scaled by `scale`;
+/// vertex ids of the input file, mapped by `vertex_map`).
+GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale,
+                            const std::vector<int>& vertex_map) {
+  if (text.empty()) return symmetry_plane_source(mesh);
   const size_t colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
@@ -76,7 +82,7 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
   }
   if (kind == "boundary-vertices" || kind == "vertex") {
     std::vector<int> ids;
-    for (double x : parse_numbers(args, kind)) ids.push_back(static_cast<int>(x));
+    for (double x : parse_numbers(args, kind)) ids.push_back(mapped_vertex(vertex_map, x, kind));
     if (kind == "vertex") {
       if (ids.size() != 1) throw InvalidInput("--source vertex:ID takes one vertex index");
       return source_from_vertex(mesh, ids[0]);
@@ -94,28 +100,6 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
       fmt::format("--source '{}': unknown kind '{}'; use plane:NX,NY,NZ,D, boundary:BEGIN,END[,LOOP], "
                   "boundary-vertices:I,J,..., vertex:I or polyline:FILE.obj",
                   text, kind));
-}
-
-/// Cuts the surface open along a polyline given in an OBJ file (--cut).
-TriMesh cut_surface(const TriMesh& mesh, const std::string& path, double scale, int& cut_edges) {
-  const auto lines = read_polylines_obj(path);
-  if (lines.empty()) throw InvalidInput(path + ": no polyline (l element) to cut along");
-  TriMesh out = mesh;
-  for (const auto& line : lines) {
-    std::vector<Vec3> pts = line.points;
-    for (Vec3& p : pts) p *= scale;
-    const GeodesicSource on_surface = source_from_polyline(out, pts);
-    std::vector<MeshPoint> path_points;
-    for (const auto& pl : on_surface.polylines) {
-      for (const SurfacePoint& p : pl)
-        path_points.push_back(MeshPoint::in_face(p.face, {p.bary[0], p.bary[1], p.bary[2]}));
-    }
-    const SplitMeshResult split = split_mesh_along_path(out, path_points);
-    const CutMeshResult cut = cut_mesh_along_path(split.mesh, split.path);
-    cut_edges += cut.num_cut_edges;
-    out = cut.mesh;
-  }
-  return out;
 }
 
 /// The stitch mesh as triangles with one colour per stitch (for viewing).
@@ -163,7 +147,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                   "polyline:FILE.obj");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
+  add_cut_option(*cmd, o->cut);
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
       ->check(CLI::NonNegativeNumber);
@@ -192,12 +176,10 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       const double scale = unit_scale(o->units);
       std::string description;
       Timer t;
-      TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
-      int cut_edges = 0;
-      if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
-      require_disk(surface, description);
+      std::vector<int> vertex_map;
+      const TriMesh input = load_design_surface(o->input, o->units, o->edge, description, nullptr, &vertex_map);
       const double load_seconds = t.seconds();
-      const GeodesicSource source = parse_source(surface, o->source, scale);
+      const GeodesicSource source = parse_source(input, o->source, scale, vertex_map);
 
       ShortRowOptions opt;
       opt.params = params;
@@ -209,7 +191,16 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (o->bending >= 0) opt.evaluation.relax.bending = o->bending;
       if (o->field_tolerance >= 0) opt.field_tolerance = o->field_tolerance;
       opt.progress = [](const std::string& stage) { note(stage + " ..."); };
-      const ShortRowDesign d = design_short_rows(surface, source, opt);
+      if (!o->cut.empty()) opt.cuts = read_cuts(o->cut, scale);
+      opt.surface_name = description;
+      const ShortRowDesign d = design_short_rows(input, source, opt);
+      const TriMesh& surface = d.surface;
+      if (!d.seams.empty()) {
+        note(fmt::format("cut the surface ({} boundary loop(s), genus {}) into a disk along {} seam(s), {:.1f} mm "
+                         "(seams.obj){}",
+                         d.input_boundary_loops, d.input_genus, d.seams.size(), seam_length(d.seams),
+                         d.source_on_seam ? "; the source lies on a seam" : ""));
+      }
 
       // Outputs.
       note("writing outputs ...");
@@ -245,6 +236,11 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         for (const auto& w : level) wales.push_back(w.points);
       }
       write_polylines_obj(out("wales.obj"), wales);
+      if (!d.seams.empty()) {
+        std::vector<std::vector<Vec3>> seams;
+        for (const Seam& seam : d.seams) seams.push_back(seam.path);
+        write_polylines_obj(out("seams.obj"), seams);
+      }
       if (!d.wales.cuts.empty()) {
         std::vector<std::vector<Vec3>> cuts;
         for (const auto& c : d.wales.cuts) cuts.push_back(c.path);
@@ -294,10 +290,18 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       double cut_length = 0;
       for (const auto& c : d.wales.cuts) cut_length += c.length;
       const double expected = d.surface_area / (params.stitch_width * params.stitch_height);
-      report["input"] = {
-          {"surface", description},       {"units", o->units},          {"vertices", surface.num_vertices()},
-          {"faces", surface.num_faces()}, {"area_mm2", d.surface_area}, {"source", source.description},
-          {"user_cut_edges", cut_edges}};
+      report["input"] = {{"surface", description},
+                         {"units", o->units},
+                         {"vertices", input.num_vertices()},
+                         {"faces", input.num_faces()},
+                         {"boundary_loops", d.input_boundary_loops},
+                         {"genus", d.input_genus},
+                         {"area_mm2", d.surface_area},
+                         {"source", d.source.description}};
+      report["seams"] = seams_json(d.seams);
+      report["seams"]["source_on_seam"] = d.source_on_seam;
+      report["seams"]["source_candidates"] = d.source_seam_candidates;
+      report["seams"]["designed_surface"] = {{"vertices", surface.num_vertices()}, {"faces", surface.num_faces()}};
       report["parameters"] = {
           {"stitch_width_mm", params.stitch_width},
           {"stitch_height_mm", params.stitch_height},
@@ -334,6 +338,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       report["knittable"] = d.map_check.ok() && d.mesh_check.ok();
       second.get();  // rethrows what the second thread threw
       report["seconds"] = {{"load", load_seconds},
+                           {"seams", d.seconds.seams},
                            {"field", d.seconds.field},
                            {"wales", d.seconds.wales},
                            {"tessellation", d.seconds.tessellation},
