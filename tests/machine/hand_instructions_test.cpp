@@ -67,14 +67,6 @@ TEST(HandInstructions, IncreaseAndDecreaseUseTheTransferTool) {
   EXPECT_EQ(h.hand_transfers, 2 + 3);
 }
 
-// A run of wales ending together at the edge is bound off by hand.
-TEST(HandInstructions, EdgeRunIsBoundOff) {
-  const KnittingMap map = test::parse_map({"KKK___", "KKK___", "KKKKKK"});
-  const std::string text = hand_instructions_text(hand_instructions(map, machine_profile("brother-kh868")));
-  EXPECT_NE(text.find("Bind off needles"), std::string::npos) << text;
-  EXPECT_NE(text.find("2 stitches, chain cast-off from the fabric edge"), std::string::npos) << text;
-}
-
 TEST(HandInstructions, HtmlIsSelfContainedAndEscaped) {
   RandomMapOptions ro;
   ro.seed = 9;

@@ -75,7 +75,9 @@ TEST(KnitoutWriter, HeadersComeFirstAndAreExact) {
 TEST(KnitoutWriter, RectangleIsPlainCastOnCoursesAndChainBindOff) {
   const auto& prof = machine_profile("shima-swg091n2");
   const auto map = test::rectangle_map();
-  const auto p = write_knitout(map, prof);
+  KnitoutOptions plain;
+  plain.waste_rows = 0;
+  const auto p = write_knitout(map, prof, plain);
   // 6 needles: 3 tucks leftwards + 3 rightwards, 1 cast-on course, 4 courses,
   // 5 chain steps (1 knit each), 4 tail knits.
   EXPECT_EQ(p.stats.tucks, 6);
@@ -91,7 +93,7 @@ TEST(KnitoutWriter, RectangleIsPlainCastOnCoursesAndChainBindOff) {
   EXPECT_EQ(count_lines_starting(p.text, "outhook 1"), 1);
   // releasehook comes before the first transfer
   EXPECT_LT(p.text.find("releasehook 1"), p.text.find("xfer"));
-  expect_valid(map, prof, {}, "rectangle");
+  expect_valid(map, prof, plain, "rectangle");
 }
 
 TEST(KnitoutWriter, HandMadeMapsAreValidOnEveryTwoBedProfile) {
@@ -196,20 +198,38 @@ TEST(KnitoutWriter, WasteSectionAndWasteBindOff) {
   EXPECT_EQ(res.carriers_used, (std::set<std::string>{"1", "2", "3"}));
 }
 
-TEST(KnitoutWriter, StitchAndSpeedSettingsAreOptional) {
+TEST(KnitoutWriter, StitchAndSpeedSettingsFollowTheMachine) {
+  // Shima: no settings unless asked for (its stitch table is the machine's own).
   const auto& prof = machine_profile("shima-swg091n2");
   const auto plain = write_knitout(test::rectangle_map(), prof);
   EXPECT_EQ(plain.text.find("x-"), std::string::npos);
   KnitoutOptions o;
-  o.stitch_number = 32;
-  o.speed_number = 200;
-  o.xfer_stitch_number = 20;
+  o.body.stitch_number = "32";
+  o.body.speed_number = 10;
   o.gauge = 12;
   const auto p = write_knitout(test::rectangle_map(), prof, o);
   EXPECT_NE(p.text.find("\nx-stitch-number 32\n"), std::string::npos);
-  EXPECT_NE(p.text.find("\nx-speed-number 200\n"), std::string::npos);
-  EXPECT_NE(p.text.find("\nx-xfer-stitch-number 20\n"), std::string::npos);
+  EXPECT_NE(p.text.find("\nx-speed-number 10\n"), std::string::npos);
   EXPECT_NE(p.text.find(";;Gauge: 12\n"), std::string::npos);
+  // the SWG translator does not read x-xfer-stitch-number
+  KnitoutOptions x;
+  x.body.xfer_stitch_number = "20";
+  EXPECT_THROW(write_knitout(test::rectangle_map(), prof, x), InvalidInput);
+  // Kniterate: settings per section from its translator's defaults; stitch
+  // numbers are 0-9 / A-Z there.
+  const auto& kn = machine_profile("kniterate");
+  const auto k = write_knitout(test::rectangle_map(), kn);
+  const auto waste = k.text.find("; waste:");
+  const auto cast_on = k.text.find("; cast-on:");
+  const auto course0 = k.text.find("; course 0:");
+  ASSERT_NE(waste, std::string::npos);
+  EXPECT_LT(waste, k.text.find("x-roller-advance 400"));
+  EXPECT_LT(k.text.find("x-stitch-number 6"), cast_on);
+  EXPECT_LT(cast_on, k.text.find("x-stitch-number 5"));
+  EXPECT_LT(k.text.find("x-stitch-number 5"), course0);
+  KnitoutOptions big;
+  big.body.stitch_number = "12";
+  EXPECT_THROW(write_knitout(test::rectangle_map(), kn, big), InvalidInput);
 }
 
 TEST(KnitoutWriter, RejectsBadInputWithClearErrors) {
@@ -340,49 +360,6 @@ TEST(KnitoutWriterSimulated, RandomMapsSimulateCleanAndMatchTheMap) {
     }
     expect_simulates(map, machine_profile(seed % 3 ? "shima-swg091n2" : "kniterate"), o,
                      "random " + std::to_string(seed));
-  }
-}
-
-}  // namespace
-}  // namespace knitforge
-
-namespace knitforge {
-namespace {
-
-// Runs of wales ending together at the fabric edge (the edge runs along the
-// course there, as at the rim of an opening): merging them all onto the
-// neighbour would stack 4 loops and pull stitches with a free top edge into
-// the next course, so all but the wale next to the continuing fabric are
-// bound off by a chain: during the course when the run is where the course
-// starts, after it when the run is where it ends. Before, such maps failed
-// ("cannot be merged ... without stacking more than 3 loops"), and runs of
-// two simulated with a wale mismatch.
-TEST(KnitoutWriterSimulated, EdgeRunsOfEndingWalesAreBoundOffByAChain) {
-  struct Case {
-    const char* what;
-    KnittingMap map;
-    int bound_off;
-    const char* comment;
-  };
-  const std::vector<Case> cases = {
-      {"left run, start of the course", test::parse_map({"___KKK", "___KKK", "KKKKKK"}), 2,
-       "; bind-off during course 0"},
-      {"right run, end of the course", test::parse_map({"KKK___", "KKK___", "KKKKKK"}), 2,
-       "; bind-off after course 0"},
-      {"right run of two", test::parse_map({"KKKK__", "KKKK__", "KKKKKK"}), 1, "; bind-off after course 0"},
-      {"left run of five", test::parse_map({"_____KK", "_____KK", "KKKKKKK"}), 4, "; bind-off during course 0"},
-  };
-  for (const Case& c : cases) {
-    for (const char* name : {"shima-swg091n2", "kniterate"}) {
-      expect_simulates(c.map, machine_profile(name), {}, c.what);
-      const KnitoutProgram p = write_knitout(c.map, machine_profile(name));
-      EXPECT_EQ(p.stats.bound_off, c.bound_off) << c.what;
-      EXPECT_NE(p.text.find(c.comment), std::string::npos) << c.what;
-    }
-    const NeedleLayout L = plan_needle_layout(c.map);
-    ASSERT_EQ(L.transitions[1].bind_offs.size(), 1u) << c.what;
-    EXPECT_EQ(static_cast<int>(L.transitions[1].bind_offs[0].cols.size()), c.bound_off);
-    EXPECT_EQ(L.transitions[1].merges.size(), 1u) << c.what;  // the wale next to the fabric
   }
 }
 

@@ -19,31 +19,43 @@
 ///    column stops at the fabric edge: outside decrease); its loops are moved
 ///    onto the needle of a continuing neighbour, so the next stitch of that
 ///    neighbour is knitted through both (knit two together);
-///  - a run of neighbouring wales that end together (the fabric edge runs
-///    along the course there, e.g. the rim of an opening): only the wales
-///    of the run next to a continuing wale have a stitch above a top corner
-///    and merge (onto that neighbour); the others have a free top edge and
-///    are *bound off* by a chain (LayoutBindOff): each is knitted once more
-///    (a bind-off loop that secures it), that loop moves onto the next wale
-///    of the chain and so on, and the last one onto the run's end wale next
-///    to a continuing wale. When that wale comes after the run in the row's
-///    knitting order, the chain is knitted as the row is (each free wale:
-///    its stitch, then its bind-off knit and the transfer onto the next
-///    needle); otherwise after the row, back from the fabric edge where the
-///    carrier is. Merging them all onto the neighbour instead would stack
-///    more loops than a needle takes and pull stitches with a free top edge
-///    into the next course;
 ///  - everything else keeps its order and closes up to consecutive needles.
 ///
-/// Left/right rule (seed §1.4.2, "choose according to the location of
-/// stitches"): the *pivot* is the continuing wale whose needle is nearest to
-/// needle 0 (the centre of course 0; ties: the lower needle); it does not
-/// move. Wales left of the pivot move left to open needles (increase left)
-/// or right to close gaps (decrease left); wales right of it mirror this. An
-/// ending wale left of the pivot merges onto its nearest continuing
-/// neighbour to the right (towards the pivot), one right of the pivot onto
-/// its left neighbour; when that needle would then hold more than
+/// Where an ending wale goes. The map's stitch mesh says which later
+/// stitches take the loop of a wale's last stitch: those whose bottom edge
+/// touches its top (a Decrease's apex, or the top corner of an edge wale next
+/// to the wale that continues). When such a stitch exists, the loops merge
+/// onto its wale. A wale whose top touches no later stitch (the fabric edge
+/// narrows there: an outside decrease) may merge onto either neighbour; the
+/// left/right rule (seed §1.4.2, "choose according to the location of
+/// stitches") then decides: the *pivot* is the continuing wale whose needle is
+/// nearest to needle 0 (the centre of course 0; ties: the lower needle); it
+/// does not move. Wales left of the pivot move left to open needles
+/// (increase left) or right to close gaps (decrease left); wales right of it
+/// mirror this. A free ending wale left of the pivot merges onto its nearest
+/// continuing neighbour to the right (towards the pivot), one right of the
+/// pivot onto its left neighbour; when that needle would then hold more than
 /// `max_stack` loops the other neighbour is used instead.
+///
+/// Bind-off chains. A wale whose top touches no later stitch (a free top:
+/// the fabric edge narrows by several wales in one course, or a hole opens)
+/// cannot merge onto a neighbour without knitting a fabric the map does not
+/// describe. Runs of such wales are bound off by a chain along their row,
+/// as a knitter casts off stitches at the edge (LayoutChain): right after a
+/// chained stitch of row r is knitted its loop is moved onto the needle of
+/// the next stitch of the row, which is then knitted through both (knit,
+/// pass over); the chain ends on that next stitch (`onto_col`), so no
+/// needle holds more than two loops. In a knittable map such a run never
+/// ends its row (the row's last stitch continues into the next course), so
+/// there always is a next stitch.
+///
+/// Closure tucks are given up where they would overflow a merge: a tuck of
+/// an earlier turn on the ending wale or its target is taken back (that turn
+/// is left open, counted in open_turns).
+///
+/// Problems. A transition that still cannot be made (ending wales whose
+/// targets are all full, a chain that cannot be placed) is recorded in
+/// `problems` with the map cell and the reason; writers refuse such a layout.
 ///
 /// Transfers. Every loop (or stack of loops) whose needle changes is moved by
 /// front -> back at racking 0, then back -> front at racking = displacement.
@@ -65,6 +77,7 @@
 
 #include <climits>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "knitforge/core/knitting_map.h"
@@ -92,24 +105,24 @@ struct LayoutMerge {
   int onto_col = -1;
 };
 
-/// Wales with a free top edge bound off by a chain after their last row
-/// (see the file comment).
-struct LayoutBindOff {
-  /// The bound-off wales in chain order (each is knitted once more, the new
-  /// loop moves onto the needle of the next, then of onto_col).
-  std::vector<int> cols;
-  int onto_col = -1;  ///< the ending wale the chain's last loop moves onto
-  /// True: knitted during the row (in its direction, each wale right after
-  /// its stitch; onto_col's stitch comes after the chain). False: after the
-  /// row, against its direction, starting at the fabric edge.
-  bool during_row = false;
+/// A run of ending wales with free tops bound off by a chain along row
+/// `row` (see the file comment).
+struct LayoutChain {
+  int row = -1;
+  std::vector<int> cols;  ///< the chained wales, in the row's knitting order
+  int onto_col = -1;      ///< the next stitch of the row, which takes the chain's last loop
+};
+
+/// A transition the machine cannot make.
+struct LayoutProblem {
+  int row = -1, col = -1;  ///< map cell (the ending wale's last row and column)
+  std::string message;     ///< names the cell and what to change
 };
 
 /// The layout change between row r-1 and row r (transitions[0] is empty).
 struct LayoutTransition {
   std::vector<int> starts;           ///< wales starting at row r (need an empty needle)
-  std::vector<LayoutMerge> merges;   ///< wales ending after row r-1 merged onto a continuing one
-  std::vector<LayoutBindOff> bind_offs;  ///< wales ending after row r-1 bound off (chains of row r-1)
+  std::vector<LayoutMerge> merges;   ///< wales ending after row r-1
   std::vector<LayoutStep> steps;     ///< transfer steps, in order
   int pivot_col = -1;                ///< the wale that does not move (-1 for r = 0)
   int pivot_needle = 0;              ///< its needle
@@ -138,23 +151,26 @@ struct NeedleLayout {
   std::vector<int> closure_col;
   /// Per row: true when the row ends inside the fabric (a short-row turn).
   std::vector<uint8_t> inside_turn;
+  /// Bind-off chains, by row.
+  std::vector<LayoutChain> chains;
+  /// Transitions the machine cannot make (empty when the layout is complete).
+  std::vector<LayoutProblem> problems;
   int open_turns = 0;          ///< inside turns left without closure (loop limit)
   int min_needle = 0;          ///< smallest needle used at any time
   int max_needle = 0;          ///< largest needle used at any time
   int increases = 0;           ///< starting wales (interior and edge)
-  int decreases = 0;           ///< ending wales merged onto a neighbour
-  int bound_off = 0;           ///< ending wales bound off by a chain
+  int decreases = 0;           ///< ending wales merged onto a neighbour or chained
+  int chained = 0;             ///< ending wales bound off by chains
   int loop_moves = 0;          ///< moves over all steps (each is 2 transfers)
 
   int needle_at(int r, int c) const { return needle[static_cast<size_t>(r) * cols + c]; }
   bool alive(int r, int c) const { return needle_at(r, c) != kNoNeedle; }
 };
 
-/// Plans the layout (see the file comment).
+/// Plans the layout (see the file comment). Transitions the machine cannot
+/// make are recorded in NeedleLayout::problems, not thrown.
 /// \throw InvalidInput when the map is not a valid knitting map (as
 ///        map_to_stitch_mesh_topology()), when consecutive rows share no wale,
-///        or when ending wales cannot be merged without stacking more than
-///        max_stack loops on a needle (the message names the row and columns);
 ///        or when an option is out of range.
 NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOptions& options = {});
 
