@@ -380,6 +380,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         std::fprintf(stderr, "%s", r.text().c_str());
         note("the design is NOT knittable (details in report.json); outputs were written for inspection");
         int pieces = 1;
+        bool user_seams = false;
+        for (const Seam& seam : d.seams) user_seams = user_seams || seam.kind == SeamKind::User;
         try {
           StitchAdjacency(d.stitch_mesh).halfedges().face_components(&pieces);
         } catch (const Error&) {
@@ -390,8 +392,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
               "the stitches fall apart into {} separate pieces: the field has a ridge (a line of maxima "
               "where wales from two parts of the source meet, e.g. a plane that cuts the surface twice), "
               "which no course crosses; choose a source whose field rises to one side only, e.g. a "
-              "plane that cuts the surface once, or a part of the boundary",
-              pieces));
+              "plane that cuts the surface once, or a part of the boundary{}",
+              pieces,
+              user_seams ? "; or move the seams (--cut): the wales run from the source to the seams, so a seam "
+                           "much shorter than the source makes them meet before it (without --cut the seam "
+                           "between two rims follows the longest piece of the source that joins them)"
+                         : ""));
         } else if (!d.wales.cuts.empty() || d.unpaired_pieces > 0) {
           note(fmt::format(
               "the field needed {} cut(s) and has {} unpaired wale piece(s): where it branches the "

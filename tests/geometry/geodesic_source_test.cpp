@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "geometry/test_meshes.h"
 #include "knitforge/geometry/geodesic_distance.h"
@@ -102,6 +104,59 @@ TEST(GeodesicSource, VertexPaths) {
   EXPECT_THROW(source_from_vertex_paths(m, {{0, 30}}, "gap"), InvalidInput);
   EXPECT_THROW(source_from_vertex_paths(m, {{0, 99}}, "range"), InvalidInput);
   EXPECT_THROW(source_from_vertex_paths(m, {{}}, "empty"), InvalidInput);
+}
+
+// A meridian of the hemisphere with any number of points is one polyline on
+// the meridian plane (the normal section), whose consecutive points share a
+// face; with 3 or 5 points one of them lies within 1e-14 of the pole and is
+// put exactly on that vertex. Before, every other point count failed
+// ("cannot be joined along the surface").
+TEST(GeodesicSource, PolylineJoinedAlongItsNormalSection) {
+  for (const double edge : {2.5, 10.0}) {
+    const TriMesh m = hemisphere(75.0, edge);
+    for (int n = 2; n <= 32; ++n) {
+      SCOPED_TRACE(::testing::Message() << n << " points, edge " << edge);
+      std::vector<Vec3> pts;
+      for (int i = 0; i < n; ++i) {
+        const double a = std::numbers::pi * i / (n - 1);
+        pts.emplace_back(0.0, 75.0 * std::cos(a), 75.0 * std::sin(a));
+      }
+      const GeodesicSource src = source_from_polyline(m, pts);
+      ASSERT_EQ(src.polylines.size(), 1u);
+      const auto& line = src.polylines[0];
+      EXPECT_GE(line.size(), static_cast<size_t>(n));
+      for (size_t i = 0; i < line.size(); ++i) {
+        if (n >= 3) {
+          EXPECT_NEAR(surface_point_position(m, line[i]).x(), 0.0, 1e-9) << i;
+        }
+        if (i > 0) {
+          // some face holds both points' supports
+          bool shared = false;
+          for (const auto& t : m.faces) {
+            bool all = true;
+            for (const SurfacePoint* p : {&line[i - 1], &line[i]})
+              for (int k = 0; k < 3; ++k)
+                if (p->bary[k] != 0.0) {
+                  const int v = m.faces[p->face][k];
+                  all = all && (t[0] == v || t[1] == v || t[2] == v);
+                }
+            if (all) {
+              shared = true;
+              break;
+            }
+          }
+          EXPECT_TRUE(shared) << "points " << i - 1 << ", " << i;
+        }
+      }
+      EXPECT_FALSE(src.vertex_side.empty());  // boundary to boundary: it cuts the hemisphere in two
+      EXPECT_NO_THROW(geodesic_distance(m, src));
+    }
+    // A point within 1e-14 of the pole (a vertex) is the vertex.
+    const GeodesicSource pole = source_from_polyline(m, {Vec3(0.0, 1e-14, 75.0)});
+    const SurfacePoint& p = pole.polylines[0][0];
+    EXPECT_EQ(surface_point_position(m, p), m.vertices[0]);
+    EXPECT_EQ((p.bary.array() == 1.0).count(), 1);
+  }
 }
 
 TEST(GeodesicSource, ErrorCases) {

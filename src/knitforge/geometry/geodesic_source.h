@@ -132,21 +132,27 @@ GeodesicSource source_from_vertex_paths(const TriMesh& mesh, const std::vector<s
 std::vector<signed char> source_sides(const TriMesh& mesh, const GeodesicSource& source);
 
 /// A 3D polyline projected onto the surface: every point goes to its closest
-/// surface point; consecutive projected points are joined along the surface by
-/// the intersection of the surface with the plane through both points that
-/// contains their mean surface normal (a normal section, which is the straight
-/// segment on a flat part), walked face by face. Consecutive points should be
-/// close compared with the surface's curvature radius (a few stitch widths).
-/// The polyline is closed when its last point equals its first.
+/// surface point (a barycentric coordinate below 1e-9 is snapped to zero, so
+/// a point within rounding of an edge or a vertex lies on it exactly);
+/// consecutive projected points are joined along the surface by the
+/// intersection of the surface with the plane through both points that
+/// contains their mean surface normal (a normal section, which is the
+/// straight segment on a flat part), taken as the shortest way along that
+/// section between them among the faces near them; where the section does
+/// not join them there (it leaves the surface through the boundary, or the
+/// normals are parallel to the segment), by the shortest path on the surface
+/// (geodesic_path()). Consecutive points should be close compared with the
+/// surface's curvature radius (a few stitch widths) for the normal section
+/// to be what is meant. Repeated points are dropped. The polyline is closed
+/// when its last point equals its first.
 ///
 /// Side: when the projected polyline is closed or starts and ends on the
 /// boundary and cuts the surface into exactly two parts, vertex_side is set:
 /// positive on the left of the polyline direction (looking along the surface
 /// normal, i.e. the side n × t points to, t the tangent); otherwise unsigned.
 /// \throw InvalidInput when `points` is empty or has a non-finite point, or
-///        two consecutive points cannot be joined on the surface (the message
-///        names the pair: e.g. they are on different components, or the
-///        normal section leaves the surface through its boundary first).
+///        two consecutive points lie on different parts of the surface (the
+///        message names the pair).
 GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>& points);
 
 }  // namespace knitforge
