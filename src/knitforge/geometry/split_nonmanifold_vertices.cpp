@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/util/counting_sort.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/union_find.h"
 
@@ -45,9 +46,9 @@ VertexFanSplit split_nonmanifold_vertices(int num_vertices, std::span<const int>
       sides.push_back({v, face_vertices[b + (k + n - 1) % n], b + k});
     }
   }
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return x.v != y.v ? x.v < y.v : (x.other != y.other ? x.other < y.other : x.corner < y.corner);
-  });
+  // By (v, other), ties in corner order (linear time).
+  counting_sort_by(sides, num_vertices, [](const Side& x) { return x.other; });
+  counting_sort_by(sides, num_vertices, [](const Side& x) { return x.v; });
   UnionFind fans(static_cast<size_t>(nc));
   for (size_t i = 1; i < sides.size(); ++i) {
     if (sides[i].v == sides[i - 1].v && sides[i].other == sides[i - 1].other)
