@@ -1,7 +1,8 @@
 // Benchmarks of the map <-> stitch mesh conversions (docs/convert.md).
 //
-// The map: 300 x 300, 594 short-row ends (the most that fit in 300 rows: one
-// stacked pair per turn, first and last rows full) and 200 short columns,
+// The map: 300 x 300, 560 short-row ends (2 x (300 - 3) = 594 is the bound
+// of one stacked pair per turn, first and last rows full; with no four ends
+// stacked in a wale the generator fits about 560) and 200 short columns,
 // from random_knitting_map(seed 1).
 
 #include <benchmark/benchmark.h>
@@ -28,9 +29,9 @@ RandomMapOptions big_map_options(int short_row_ends) {
 }
 
 const KnittingMap& big_map(int short_row_ends) {
-  static const KnittingMap a = random_knitting_map(big_map_options(594));
+  static const KnittingMap a = random_knitting_map(big_map_options(560));
   static const KnittingMap b = random_knitting_map(big_map_options(200));
-  return short_row_ends == 594 ? a : b;
+  return short_row_ends == 560 ? a : b;
 }
 
 void BM_RandomKnittingMap(benchmark::State& state) {
@@ -63,9 +64,9 @@ void BM_StitchMeshToMap(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_RandomKnittingMap)->Arg(594)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_MapToStitchMeshTopology)->Arg(594)->Arg(200)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RelaxStitchMesh)->Arg(594)->Arg(200)->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK(BM_StitchMeshToMap)->Arg(594)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RandomKnittingMap)->Arg(560)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MapToStitchMeshTopology)->Arg(560)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RelaxStitchMesh)->Arg(560)->Arg(200)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_StitchMeshToMap)->Arg(560)->Arg(200)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

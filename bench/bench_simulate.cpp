@@ -1,7 +1,7 @@
 // Benchmarks of the knitout simulator (docs/machines.md, "The simulator").
 //
-// The program: write_knitout() of a 300 x 300 map with 594 short-row ends
-// (the most the random generator fits in 300 rows: one stacked pair per turn;
+// The program: write_knitout() of a 300 x 300 map with 560 short-row ends
+// (about the most the random generator fits in 300 rows: see bench_knitout;
 // 1,000 do not fit) and 200 short columns, random_knitting_map(seed 1), for
 // the Shima-like profile. Goal: parse + simulate < 0.5 s.
 
@@ -9,6 +9,7 @@
 
 #include "knitforge/convert/random_knitting_map.h"
 #include "knitforge/machine/knit_graph_compare.h"
+#include "knitforge/machine/knit_graph_to_map.h"
 #include "knitforge/machine/knitout_parse.h"
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/knitout_writer.h"
@@ -24,7 +25,7 @@ const KnittingMap& big_map() {
     o.seed = 1;
     o.rows = 300;
     o.cols = 300;
-    o.short_row_ends = 594;
+    o.short_row_ends = 560;
     o.short_columns = 200;
     return random_knitting_map(o);
   }();
@@ -56,8 +57,20 @@ void BM_CompareKnitGraph(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(compare_knit_graph(sim.graph, big_map()).mismatches);
 }
 
+// The program's fabric as a knitting map (the fabric view of simulate --report).
+void BM_KnitGraphFabric(benchmark::State& state) {
+  const KnitoutSimulation sim =
+      simulate_knitout(parse_knitout(big_program()), machine_profile("shima-swg091n2"));
+  for (auto _ : state) {
+    const KnitGraphFabric f = knit_graph_fabric(sim);
+    if (f.kind != "sheet") state.SkipWithError("the benchmark program's fabric is not a sheet");
+    benchmark::DoNotOptimize(f.map.rows);
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_KnitGraphFabric)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ParseKnitout)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ParseAndSimulateKnitout)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CompareKnitGraph)->Unit(benchmark::kMillisecond);

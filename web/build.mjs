@@ -1,6 +1,6 @@
 // Builds dist/report.js: the whole report viewer (three.js, the page code and
 // its CSS) as ONE self-contained, minified script that knitforge inlines into
-// report.html (src/knitforge/io/report_html.cpp). Run with `npm run build`.
+// report.html (src/knitforge/report/report_html.cpp). Run with `npm run build`.
 import { build } from "esbuild";
 import { readFileSync } from "node:fs";
 

@@ -1,6 +1,6 @@
 # Turns the built viewer script (web/build.mjs output) into a C++ source that
-# holds it as raw string literal chunks, compiled into knitforge_io
-# (report_viewer_script() in src/knitforge/io/report_html.cpp).
+# holds it as raw string literal chunks, compiled into knitforge_report
+# (report_viewer_script() in src/knitforge/report/report_html.cpp).
 # Usage: cmake -DINPUT=<report.js> -DOUTPUT=<file.cpp> -P embed_bundle.cmake
 if(NOT EXISTS "${INPUT}")
   message(FATAL_ERROR "embed_bundle.cmake: ${INPUT} does not exist; build the viewer with 'npm ci && npm run build' in web/")

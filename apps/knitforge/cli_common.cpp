@@ -15,7 +15,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <ostream>
+#include <sstream>
 
 #include <fmt/core.h>
 
@@ -201,6 +203,15 @@ void write_report_json(const std::string& path, const nlohmann::json& report, bo
   const std::string text = report.dump(2) + "\n";
   write_file_atomically(path, [&](std::ostream& os) { os << text; });
   if (print) std::fputs(text.c_str(), stdout);
+}
+
+std::string read_text_file(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError(fmt::format("{}: cannot open the {}", path, what));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IOError(fmt::format("{}: cannot read the {}", path, what));
+  return ss.str();
 }
 
 void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& o) {

@@ -42,6 +42,7 @@ void add_report_command(CLI::App& app, Action& action);
 void add_support_command(CLI::App& app, Action& action);
 void add_close_command(CLI::App& app, Action& action);
 void add_thicken_command(CLI::App& app, Action& action);
+void add_machines_command(CLI::App& app, Action& action);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.
@@ -69,6 +70,10 @@ void write_map_by_extension(const std::string& path, const KnittingMap& map);
 /// True when `path` is a PLY file whose faces carry the stitch properties
 /// (a stitch mesh) rather than a plain triangle mesh.
 bool is_stitch_mesh_ply(const std::string& path);
+
+/// The whole content of a text file (`what` names it in the error).
+/// \throw IOError when it cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what = "file");
 
 /// Reads a triangle mesh and scales it to millimetres.
 TriMesh load_surface(const std::string& path, const std::string& units);

@@ -36,13 +36,6 @@ nlohmann::json distortion_json(const DistortionStats& s) {
           {"flipped_faces", s.flipped_faces}};
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError(fmt::format("{}: cannot open the darts file", path));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
@@ -106,7 +99,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                          opened.input_boundary_loops, opened.input_genus, seams.size(), seam_length(seams)));
       }
       std::vector<DartSpec> darts;
-      if (!o->darts.empty()) darts = parse_darts_json(read_text(o->darts), o->darts, builtin ? 1.0 : scale);
+      if (!o->darts.empty()) darts = parse_darts_json(read_text_file(o->darts, "darts file"), o->darts, builtin ? 1.0 : scale);
       const double load_seconds = t.seconds();
 
       FlattenOptions fo;

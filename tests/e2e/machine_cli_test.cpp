@@ -110,3 +110,28 @@ TEST_F(Cli, SimulateExitsZeroWithWarningsAndStrictMakesThemErrors) {
 }
 
 }  // namespace knitforge_e2e
+
+namespace knitforge_e2e {
+
+TEST_F(Cli, SimulateReportDrawsAProgramsFabric) {
+  const std::string prog =
+      (fs::path(__FILE__).parent_path().parent_path() / "machine" / "data" / "published_style" / "swatch_drop.k").string();
+  const CliRun r = run("simulate " + prog + " --machine kniterate --report " + path("view"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("sheet, 8 courses x 10 wales; 10 of 10 findings placed on the fabric"), std::string::npos)
+      << r.err;
+  for (const char* f : {"report.html", "report.json", "stitch_mesh.ply", "yarn.obj", "knitting_map.csv", "knitout.k"})
+    EXPECT_TRUE(fs::exists(path(std::string("view/") + f))) << f;
+  const std::string html = slurp(path("view/report.html"));
+  EXPECT_NE(html.find("knitforge-data"), std::string::npos);
+  // an invalid program still gets its view, and the exit code says invalid
+  {
+    std::ofstream f(path("bad.k"));
+    f << ";!knitout-2\n;;Carriers: 1 2 3 4 5 6\nin 1\ntuck - f2 1\nknit - f2 1\nrack 9\nout 1\n";
+  }
+  const CliRun b = run("simulate " + path("bad.k") + " --machine kniterate --report " + path("bad"));
+  EXPECT_EQ(b.code, 1);
+  EXPECT_TRUE(fs::exists(path("bad/report.json")));
+}
+
+}  // namespace knitforge_e2e

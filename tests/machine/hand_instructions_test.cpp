@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "knitforge/convert/random_knitting_map.h"
+#include "knitforge/machine/needle_layout.h"
 #include "knitforge/util/errors.h"
 #include "machine/machine_test_maps.h"
 
@@ -94,6 +95,31 @@ TEST(HandInstructions, TooWideForTheBedThrows) {
   KnittingMap fits(2, 200, CellType::Knit);
   const auto h = hand_instructions(fits, kh868());
   EXPECT_EQ(h.rows[0].knit, "Carriage left -> right: knit L100 to R100 (200 stitches)");
+}
+
+}  // namespace
+}  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+// Three stitches end at the carriage side of course 1: two are cast off with
+// the latch tool (the knitout writer's bind-off chain), the third is knitted
+// onto its neighbour.
+TEST(HandInstructions, StitchesEndingTogetherAtTheEdgeAreCastOff) {
+  const KnittingMap map = test::parse_map({"KKKKK___", "KKKKK___", "KKKKKKKK", "KKKKKKKK"});
+  const NeedleLayout L = plan_needle_layout(map);
+  ASSERT_EQ(L.chains.size(), 1u);
+  EXPECT_EQ(L.chains[0].row, 1);
+  EXPECT_EQ(L.chains[0].cols, (std::vector<int>{7, 6}));
+  EXPECT_EQ(L.chains[0].onto_col, 5);
+  const auto h = hand_instructions(map, machine_profile("brother-kh868"));
+  ASSERT_EQ(h.rows.size(), 4u);
+  ASSERT_FALSE(h.rows[1].before.empty());
+  const std::string& cast = h.rows[1].before.back();
+  EXPECT_NE(cast.find("At the carriage side, cast off the 2 stitches"), std::string::npos) << cast;
+  // the carriage knits the rest of the row: 6 of its 8 stitches
+  EXPECT_NE(h.rows[1].knit.find("(6 stitches)"), std::string::npos) << h.rows[1].knit;
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ inline KnittingMap short_column_map() {
 // that started beyond the last stitch of the one below would break the
 // one-stroke order, seed §1.2.2).
 inline KnittingMap boundary_shaping_map() {
-  return parse_map({"_KKKK__", "_KKKK__", "_KKKKK_", "KKKKKK_", "KKKKK__", "_KKKK__"});
+  return parse_map({"_KKKK_", "_KKKK_", "_KKKKK", "KKKKKK", "KKKKK_", "_KKKK_"});
 }
 
 // Fourteen increases in one course: far wales move more than 4 needles.

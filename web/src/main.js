@@ -97,6 +97,21 @@ function build(data) {
       fitBtn.addEventListener("click", m.fit);
     });
   }
+  const findings = data.metrics && Array.isArray(data.metrics.diagnostics) ? data.metrics.diagnostics : null;
+  if (findings && findings.length) {
+    const sec = panel(`Findings of the virtual machine (${findings.length})`, "panel-findings", true);
+    const table = el("table", { class: "kv findings", id: "findings-table" });
+    table.append(el("tr", {}, el("th", {}, "line"), el("th", {}, "severity"), el("th", {}, "check"),
+      el("th", {}, "on the fabric"), el("th", {}, "message")));
+    for (const d of findings.slice(0, 500)) {
+      table.append(el("tr", { class: d.severity },
+        el("td", { class: "num" }, String(d.line)), el("td", {}, d.severity), el("td", {}, `${d.rule}/${d.check}`),
+        el("td", {}, d.position ? `stitch ${d.stitch}` : "\u2013"), el("td", {}, d.message)));
+    }
+    sec.append(el("div", { class: "tree" }, table));
+    if (findings.length > 500) sec.append(el("div", { class: "note" }, `${findings.length - 500} more in report.json`));
+    main.append(sec);
+  }
   if (data.metrics !== undefined && data.metrics !== null) {
     const sec = panel("Metrics (report.json)", "panel-metrics", false);
     sec.append(el("div", { class: "tree" }, jsonNode(data.metrics)));

@@ -38,8 +38,10 @@ export function knitterSummary(machine, metrics, files) {
   verdict.id = "machine-verdict";
   const good = machine.verdict === "VALID" && machine.matches_map !== false;
   verdict.className = good ? "verdict good" : "verdict bad";
+  const match = machine.matches_map === undefined ? ""
+    : machine.matches_map ? ", knits exactly the designed map" : ", but DIFFERS from the map";
   verdict.textContent = machine.verdict === "VALID"
-    ? `VALID on the virtual machine${machine.matches_map ? ", knits exactly the designed map" : ", but DIFFERS from the map"}` +
+    ? `VALID on the virtual machine${match}` +
       (machine.warnings ? ` (${machine.warnings} warning${machine.warnings === 1 ? "" : "s"})` : "")
     : `${machine.verdict}${machine.reason ? ": " + machine.reason : ""}`;
   row(table, "machine verdict", verdict);

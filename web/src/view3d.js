@@ -332,6 +332,25 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
   if (data.wales && data.wales.polylines.length) {
     addLayer("wales", "wale curves", polylineGroup(data.wales, scale, () => [20, 20, 20], 0, true), true);
   }
+  // Findings of the virtual machine placed on the fabric (report.json
+  // "diagnostics" with a "position", written by `simulate --report`).
+  const placed = data.metrics && Array.isArray(data.metrics.diagnostics)
+    ? data.metrics.diagnostics.filter((d) => Array.isArray(d.position)) : [];
+  if (placed.length) {
+    const edge = mainSm ? meanEdgeLength(mainSm, scale) : 1;
+    const group = new THREE.Group();
+    const geo = new THREE.SphereGeometry(0.45 * edge, 12, 8);
+    const mats = {
+      error: new THREE.MeshLambertMaterial({ color: 0xd0021b }),
+      warning: new THREE.MeshLambertMaterial({ color: 0xf5a623 }),
+    };
+    for (const d of placed) {
+      const m = new THREE.Mesh(geo, mats[d.severity] || mats.warning);
+      m.position.set(d.position[0], d.position[1], d.position[2]);
+      group.add(m);
+    }
+    addLayer("findings", `findings (${placed.length})`, group, true);
+  }
 
   // Rendering is on demand and coalesced: any number of changes before the
   // next animation frame give one render.

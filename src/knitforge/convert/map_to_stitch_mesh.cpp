@@ -78,7 +78,50 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
 
 constexpr const char* kCornerNames[4] = {"bottom-left", "bottom-right", "top-right", "top-left"};
 
+// The grid corners V(i, j) = i * (cols + 1) + j merged cell by cell
+// (docs/representations.md).
+UnionFind merge_corners(const KnittingMap& map) {
+  const int R = map.rows, C = map.cols;
+  const std::vector<uint8_t> kind = classify_collapsed(map);
+  const int VC = C + 1;
+  auto V = [VC](int i, int j) { return i * VC + j; };
+  UnionFind uf(static_cast<size_t>(R + 1) * VC);
+  for (int r = 0; r < R; ++r) {
+    for (int c = 0; c < C; ++c) {
+      const int bl = V(r, c), br = V(r, c + 1), tr = V(r + 1, c + 1), tl = V(r + 1, c);
+      switch (map.at(r, c)) {
+        case CellType::ShortRowLeft: uf.unite(bl, tl); break;
+        case CellType::ShortRowRight: uf.unite(br, tr); break;
+        case CellType::Increase: uf.unite(bl, br); break;
+        case CellType::Decrease: uf.unite(tl, tr); break;
+        case CellType::Collapsed: {
+          const uint8_t k = kind[static_cast<size_t>(r) * C + c];
+          if (k & kInRow) {
+            uf.unite(bl, br);
+            uf.unite(tl, tr);
+          }
+          if (k & kInCol) {
+            uf.unite(bl, tl);
+            uf.unite(br, tr);
+          }
+          break;
+        }
+        default: break;
+      }
+    }
+  }
+  return uf;
+}
+
 }  // namespace
+
+std::vector<int> map_corner_classes(const KnittingMap& map) {
+  check_map_arrays(map);
+  UnionFind uf = merge_corners(map);
+  std::vector<int> out(uf.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<int>(uf.find(static_cast<int>(i)));
+  return out;
+}
 
 KnittingMap canonical_cells(const KnittingMap& map) {
   check_map_arrays(map);
@@ -133,35 +176,9 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
     lo_stitch[r] = lo;
     hi_stitch[r] = hi;
   }
-  const std::vector<uint8_t> kind = classify_collapsed(map);
-
   const int VC = C + 1;
   auto V = [VC](int i, int j) { return i * VC + j; };
-  UnionFind uf(static_cast<size_t>(R + 1) * VC);
-  for (int r = 0; r < R; ++r) {
-    for (int c = 0; c < C; ++c) {
-      const int bl = V(r, c), br = V(r, c + 1), tr = V(r + 1, c + 1), tl = V(r + 1, c);
-      switch (map.at(r, c)) {
-        case CellType::ShortRowLeft: uf.unite(bl, tl); break;
-        case CellType::ShortRowRight: uf.unite(br, tr); break;
-        case CellType::Increase: uf.unite(bl, br); break;
-        case CellType::Decrease: uf.unite(tl, tr); break;
-        case CellType::Collapsed: {
-          const uint8_t k = kind[static_cast<size_t>(r) * C + c];
-          if (k & kInRow) {
-            uf.unite(bl, br);
-            uf.unite(tl, tr);
-          }
-          if (k & kInCol) {
-            uf.unite(bl, tl);
-            uf.unite(br, tr);
-          }
-          break;
-        }
-        default: break;
-      }
-    }
-  }
+  UnionFind uf = merge_corners(map);
 
   StitchMesh mesh;
   mesh.stitches.reserve(static_cast<size_t>(map.num_stitches()));
@@ -280,6 +297,7 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
   }
 
   // Boundary roles.
+  const std::vector<uint8_t> kind = classify_collapsed(map);
   std::vector<int> lo_ext(R, -1), hi_ext(R, -1);
   for (int r = 0; r < R; ++r) {
     for (int c = 0; c < C; ++c) {

@@ -33,6 +33,8 @@
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
 
+#include <vector>
+
 namespace knitforge {
 
 /// The map with every Collapsed cell that lies neither between two stitches
@@ -41,6 +43,13 @@ namespace knitforge {
 /// \throw InvalidInput as map_to_stitch_mesh_topology() for a Collapsed cell
 ///        inside both its row and its column, or inconsistent map sizes.
 KnittingMap canonical_cells(const KnittingMap& map);
+
+/// The vertex merging of map_to_stitch_mesh_topology() alone: for every grid
+/// corner V(i, j), index i * (cols + 1) + j, the id of its merged class
+/// (equal ids = one vertex). No stitch is checked for degeneracy, so a
+/// caller can ask which corners of a cell the cells around it merge.
+/// \throw InvalidInput as canonical_cells().
+std::vector<int> map_corner_classes(const KnittingMap& map);
 
 /// The stitch mesh topology of a knitting map with flat initial positions.
 /// \throw InvalidInput naming the cell (row, column) when: the map's arrays

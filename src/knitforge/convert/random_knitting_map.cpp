@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/convert/map_knittability.h"
 #include "knitforge/convert/map_to_stitch_mesh.h"
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/core/stitch_adjacency.h"
@@ -155,33 +156,44 @@ KnittingMap build(const RandomMapOptions& o, const Layout& L, Rng& rng) {
   std::vector<char> sr_turn(R + 1, 0);
   for (int i = 0; i < nturns; ++i) sr_turn[idx[i]] = 1;
 
-  // Rows: start where the previous ended, end at the edge or at a turn.
+  // Rows: start where the previous ended, end at the edge or at a turn. A
+  // column takes a new turn pair only after its wale knitted a stitch that is
+  // no short-row end since its last pair (else four ends would stack).
   std::vector<int> t(R + 1);
   t[0] = lo[0];
   std::vector<int> ks;
+  std::vector<char> knit_since_turn(C, 1);
+  auto may_turn = [&](int k) { return !is_short[k] && knit_since_turn[k]; };
   for (int r = 0; r < R; ++r) {
     const int d = r % 2 == 0 ? 1 : -1;
     const int s = t[r];
     if (!sr_turn[r + 1]) {
       t[r + 1] = d > 0 ? hi[r] : lo[r];
-      continue;
-    }
-    ks.clear();
-    if (d > 0) {
-      for (int k = s + 2; k <= hi[r] - 1; ++k) {
-        if (is_short[k] || (sr_turn[r - 1] && t[r - 1] == k)) continue;
-        if (id_max[r] > k - 2 || id_max[r + 1] > k - 2) continue;
-        ks.push_back(k);
-      }
     } else {
-      for (int k = lo[r] + 1; k <= s - 2; ++k) {
-        if (is_short[k] || (sr_turn[r - 1] && t[r - 1] == k)) continue;
-        if (id_min[r] < k + 2 || id_min[r + 1] < k + 2) continue;
-        ks.push_back(k);
+      ks.clear();
+      if (d > 0) {
+        for (int k = s + 2; k <= hi[r] - 1; ++k) {
+          if (!may_turn(k) || (sr_turn[r - 1] && t[r - 1] == k)) continue;
+          if (id_max[r] > k - 2 || id_max[r + 1] > k - 2) continue;
+          ks.push_back(k);
+        }
+      } else {
+        for (int k = lo[r] + 1; k <= s - 2; ++k) {
+          if (!may_turn(k) || (sr_turn[r - 1] && t[r - 1] == k)) continue;
+          if (id_min[r] < k + 2 || id_min[r + 1] < k + 2) continue;
+          ks.push_back(k);
+        }
       }
+      if (ks.empty()) throw Retry{};
+      t[r + 1] = ks[rng.uniform(0, static_cast<int>(ks.size()) - 1)];
     }
-    if (ks.empty()) throw Retry{};
-    t[r + 1] = ks[rng.uniform(0, static_cast<int>(ks.size()) - 1)];
+    // the row's regular stitches (not its two ends when they are turns)
+    const int a = std::min(s, t[r + 1]), b = std::max(s, t[r + 1]);
+    for (int c = a; c <= b; ++c) {
+      const bool end = (c == t[r + 1] && sr_turn[r + 1]) || (c == s && sr_turn[r]);
+      if (end) knit_since_turn[c] = 0;
+      else if (present(r, c)) knit_since_turn[c] = 1;
+    }
   }
 
   KnittingMap map(R, C, CellType::Empty);
@@ -220,6 +232,7 @@ void validate(const KnittingMap& map) {
     const int nx = adj.next_stitch(s);
     if ((s + 1 < mesh.num_stitches()) != (nx == s + 1)) throw InvalidInput("one-stroke order broken");
   }
+  if (!check_knittability(map).ok()) throw InvalidInput("not knittable");
 }
 
 }  // namespace

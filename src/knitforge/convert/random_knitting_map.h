@@ -9,9 +9,10 @@
 ///  - a short-row turn at column k between rows r and r+1 puts two stacked
 ///    short-row-end triangles at (r, k) and (r+1, k) (ShortRowRight when the
 ///    turn is on the right, ShortRowLeft on the left); turns are never at the
-///    fabric edge (no boundary apex) and the same side/column never turns
-///    twice in succession (no four stacked short-row ends); rows 0 and
-///    rows-1 are full courses;
+///    fabric edge (no boundary apex), the same side/column never turns twice
+///    in succession, and a column takes a new turn pair only after its wale
+///    knitted a regular stitch since its last one (no four stacked short-row
+///    ends); rows 0 and rows-1 are full courses;
 ///  - a short column occupies one map column between an Increase (its start)
 ///    and a Decrease (its end); either end may instead run to the bottom or
 ///    top edge, never both. Short columns keep away from the fabric edge
@@ -25,9 +26,9 @@
 ///  - cells the fabric skips are Collapsed when they lie between two stitches
 ///    of their row or column, otherwise Empty (canonical form, see
 ///    docs/representations.md), so map -> stitch mesh -> map is the identity.
-/// The result is checked (stitch mesh topology and round trip) before it is
-/// returned; a construction that fails the check is redrawn from the next
-/// random stream.
+/// The result is checked (stitch mesh topology, round trip and
+/// check_knittability()) before it is returned; a construction that fails
+/// the check is redrawn from the next random stream.
 ///
 /// Deterministic: the same options (including the seed) give the same map.
 

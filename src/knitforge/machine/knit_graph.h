@@ -50,6 +50,7 @@ struct KnitLoop {
   int child = -1;         ///< the loop later pulled through this one, -1 when none
   int transfers = 0;      ///< how many times it was moved to another needle
   bool on_empty_needle = false;  ///< the needle held no loop when it was formed
+  bool knit_pass = false;        ///< formed in a carriage pass that also knits or splits
   bool dropped = false;   ///< dropped off its needle by a `drop`
   bool live_at_end = false;  ///< still on a needle when the program ended
   int first_carrier() const;

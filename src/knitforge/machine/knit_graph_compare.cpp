@@ -14,7 +14,7 @@ std::vector<int> fabric_loops(const KnitGraph& graph) {
   for (int i = 0; i < graph.num_loops(); ++i) {
     const KnitLoop& l = graph.loops[static_cast<size_t>(i)];
     if (l.section != LoopSection::Fabric || l.carriers == 0) continue;
-    if (l.kind == LoopKind::Tuck && !l.on_empty_needle) continue;
+    if (l.kind == LoopKind::Tuck && !(l.on_empty_needle && l.knit_pass)) continue;
     out.push_back(i);
   }
   return out;
@@ -105,7 +105,7 @@ GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& ma
     }
     if (k + 1 < n && adj.next_in_course(k) == k + 1) {
       const KnitLoop& L2 = graph.loops[static_cast<size_t>(fab[static_cast<size_t>(k + 1)])];
-      if ((L2.needle.index - L.needle.index) * S.direction <= 0) {
+      if ((L2.slot - L.slot) * S.direction <= 0) {
         report("course", k + 1, fab[static_cast<size_t>(k + 1)],
                fmt::format("{} follows {} in its course but its loop (needle {}) is not further along in "
                            "direction {} than the previous one (needle {})",

@@ -7,9 +7,10 @@
 /// Fabric loops: the loops formed in fabric sections (not after a `; cast-on`,
 /// `; bind-off` or `; waste` comment until the next `; course`/`; row`
 /// comment, see knit_graph.h) by `knit` or `split`, plus `tuck`s on an empty
-/// needle (the first loop of a wale, e.g. an increase). Tucks on a needle
-/// that holds loops (short-row turn closures, cast-on tucks) and every loop
-/// of the other sections are not fabric loops. The k-th fabric loop in
+/// needle in a pass that also knits (the first loop of a wale, e.g. an
+/// increase). Tucks on a needle that holds loops (short-row turn closures),
+/// passes of tucks only (a tuck cast-on) and every loop of the other
+/// sections are not fabric loops. The k-th fabric loop in
 /// formation (yarn) order is matched to the k-th stitch of
 /// map_to_stitch_mesh_topology(map) (knitting order).
 ///
@@ -17,7 +18,8 @@
 ///  - count: as many fabric loops as map stitches;
 ///  - direction: L was formed in the direction of S's map row;
 ///  - course: when the next stitch is S's course neighbour, the next loop
-///    lies further along the bed in that direction (same course, in order);
+///    lies further along the bed in that direction (by slot: a back needle
+///    counts at its position under the racking; same course, in order);
 ///    when the next stitch starts another course, the row turns there too;
 ///  - wale: L's fabric parents are exactly {loop of S's Bottom neighbour}
 ///    (none when S has no Bottom neighbour: cast-on row, increase) plus the

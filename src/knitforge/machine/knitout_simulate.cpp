@@ -821,6 +821,12 @@ class Simulator {
                       left, where),
           first_left);
     }
+    for (KnitLoop& l : out_.graph.loops) {
+      if (l.pass >= 0) {
+        const SimulatedPass& p = out_.passes[static_cast<size_t>(l.pass)];
+        l.knit_pass = p.knits + p.splits > 0;
+      }
+    }
     out_.stats.min_needle = have_slot_ ? static_cast<int>(std::floor(min_slot_)) : 0;
     out_.stats.max_needle = have_slot_ ? static_cast<int>(std::ceil(max_slot_)) : 0;
     out_.stats.time_s += (out_.stats.carriers_in + out_.stats.carriers_out) * p_.timing.carrier_in_out_s;

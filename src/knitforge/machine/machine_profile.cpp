@@ -6,6 +6,7 @@
 #include <set>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "knitforge/util/errors.h"
 
@@ -71,9 +72,9 @@ void default_checks(MachineProfile& p) {
   set(p, C::ReleasehookMismatch, L::Error, fmt::format("{}: \"Can't releasehook on ..., hook currently holds\"", kDat));
   set(p, C::ReleasehookEarly, L::Error,
       fmt::format("{}: releasehook follows an inhook of the same set and at least one knitting operation", kSpec));
-  set(p, C::HookTransfer, L::Error,
-      "the hook holds the yarn end at the bed until released; knitforge releases it before any transfer "
-      "(docs/machines.md)");
+  set(p, C::HookTransfer, L::Warning,
+      "knitforge's practice, not a translator's rule: the hook holds the yarn end at the bed until released, so "
+      "knitforge releases it before any transfer; the open translators do not check it");
   set(p, C::OutWhileHooked, L::Error,
       fmt::format("{}: \"Can't out carriers, hook release pending\", \"Can't outhook carriers, hook is already "
                   "holding\"; {}: Hooked_Carrier_Exception",
@@ -369,6 +370,55 @@ std::string machine_rules_markdown(const MachineProfile& p) {
     const CheckRule& r = p.checks[static_cast<size_t>(c)];
     s += fmt::format("| `{}` | {} | {} | {} | {} |\n", info.id, name(info.rule), name(r.level), info.summary,
                      r.source);
+  }
+  return s;
+}
+
+std::string machines_reference_markdown() {
+  auto side = [](BedSide b) { return b == BedSide::Left ? "left" : b == BedSide::Right ? "right" : "either"; };
+  std::string s;
+  s += "| profile | machine | gauge | needles | carriers | hook | racking (fractions) | loops / needle (after a "
+       "transfer) | float | carriers wait | waste courses by default |\n";
+  s += "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& p : profiles()) {
+    std::string fr;
+    for (double f : p.racking_fractions) fr += (fr.empty() ? "" : ", ") + fmt::format("{}", f);
+    if (p.quarter_pitch_as_half) fr += "; 0.25 knitted as 0.5";
+    s += fmt::format("| `{}` | {} | {:.4g} | {} | {} | {} | ±{}{} | {} ({}) | {} | {} | {} |\n", p.name,
+                     p.display_name, p.gauge, p.needle_count, fmt::join(p.carriers, " "),
+                     p.has_yarn_inserting_hook ? "yes" : "no", p.max_racking, fr.empty() ? "" : " (" + fr + ")",
+                     p.max_loops_per_needle, p.max_transfer_stack, p.max_float_needles, side(p.carrier_park_side),
+                     p.manual ? std::string("—") : std::to_string(p.writer.waste_rows));
+  }
+  std::vector<const MachineProfile*> two_bed;
+  for (const auto& p : profiles())
+    if (p.beds == 2) two_bed.push_back(&p);
+  s += "\nLevels of every check (error: the machine cannot or must not execute it; warning: the machine runs it "
+       "but the fabric suffers or a convention is broken; off: no such rule on that machine):\n\n";
+  s += "| check | category | what is checked |";
+  for (const auto* p : two_bed) s += fmt::format(" {} |", p->name);
+  s += "\n|---|---|---|";
+  for (size_t i = 0; i < two_bed.size(); ++i) s += "---|";
+  s += "\n";
+  for (int c = 0; c < kNumKnitoutChecks; ++c) {
+    const KnitoutCheckInfo& info = knitout_check_info(static_cast<KnitoutCheck>(c));
+    s += fmt::format("| `{}` | {} | {} |", info.id, name(info.rule), info.summary);
+    for (const auto* p : two_bed) s += fmt::format(" {} |", name(p->level(static_cast<KnitoutCheck>(c))));
+    s += "\n";
+  }
+  for (const auto* p : two_bed) {
+    s += fmt::format("\n### {} (`{}`)\n\n", p->display_name, p->name);
+    if (p->writer.waste_rows > 0 || !p->writer.waste_reason.empty())
+      s += fmt::format("Waste section by default: {} courses ({}).\n", p->writer.waste_rows, p->writer.waste_reason);
+    if (!p->writer.settings_source.empty()) s += fmt::format("Machine settings: {}.\n", p->writer.settings_source);
+    std::string ext;
+    for (const auto& e : p->extensions) ext += (ext.empty() ? "" : ", ") + fmt::format("`{}`", e.name);
+    s += fmt::format("Extensions read: {}.\n\n", ext.empty() ? "none" : ext);
+    s += "| check | level | where it comes from |\n|---|---|---|\n";
+    for (int c = 0; c < kNumKnitoutChecks; ++c) {
+      const CheckRule& r = p->checks[static_cast<size_t>(c)];
+      s += fmt::format("| `{}` | {} | {} |\n", knitout_check_id(static_cast<KnitoutCheck>(c)), name(r.level), r.source);
+    }
   }
   return s;
 }

@@ -173,8 +173,14 @@ std::vector<std::string> machine_profile_names();
 void validate_machine_profile(const MachineProfile& profile);
 
 /// The rules of `profile` as a Markdown table: one row per check with its
-/// category, level and source (docs/machines.md is made from this).
+/// category, level and source.
 std::string machine_rules_markdown(const MachineProfile& profile);
+
+/// The reference of all built-in profiles in Markdown (docs/machines.md,
+/// "Profiles and their rules", is made from this by scripts/docs): a table
+/// of the profiles' limits and writer defaults, the level of every check on
+/// every two-bed profile, and per profile where each level comes from.
+std::string machines_reference_markdown();
 
 /// Time of one carriage pass of `kind` spanning `span_needles` needles
 /// (see the timing model in the file comment), in seconds.

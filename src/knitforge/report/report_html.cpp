@@ -24,6 +24,7 @@
 #include "knitforge/machine/knitout_parse.h"
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/machine_profile.h"
+#include "knitforge/report/simulation_json.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/errors.h"
 
@@ -261,38 +262,9 @@ json knitout_json(const std::string& path, bool simulate) {
                                            : "not run: no machine profile for ;;Machine: " + *machine;
     return out;
   }
-  const KnitoutSimulation sim = simulate_knitout(file, *profile);
-  const SimulationStats& st = sim.stats;
-  json s = json::object();
+  // The verdict as `simulate --json` gives it, with the first 20 findings.
+  json s = simulation_json(simulate_knitout(file, *profile), 20);
   s["machine"] = profile->display_name;
-  s["valid"] = sim.ok();
-  s["errors"] = sim.errors;
-  s["warnings"] = sim.warnings;
-  s["carriage_passes"] = st.carriage_passes;
-  s["knit_passes"] = st.knit_passes;
-  s["transfer_passes"] = st.transfer_passes;
-  s["racks"] = st.racks;
-  s["knits"] = st.knits;
-  s["tucks"] = st.tucks;
-  s["splits"] = st.splits;
-  s["misses"] = st.misses;
-  s["transfers"] = st.transfers;
-  s["drops"] = st.drops;
-  s["needle_range"] = json::array({st.min_needle, st.max_needle});
-  s["knitting_time_s"] = std::round(st.time_s * 10.0) / 10.0;
-  json yarn = json::object();
-  for (size_t i = 0; i < st.yarn_mm.size() && i < file.carrier_names.size(); ++i) {
-    if (st.yarn_mm[i] > 0.0) yarn[file.carrier_names[i]] = std::round(st.yarn_mm[i]);
-  }
-  s["yarn_mm_per_carrier"] = std::move(yarn);
-  json diags = json::array();
-  for (const KnitoutDiagnostic& d : sim.diagnostics) {
-    if (diags.size() >= 20) break;
-    diags.push_back(fmt::format("line {}: {} [{}] {}", d.line,
-                                d.severity == Severity::Error ? "error" : "warning", name(d.rule),
-                                d.message));
-  }
-  if (!diags.empty()) s["first_diagnostics"] = std::move(diags);
   out["simulation"] = std::move(s);
   return out;
 }
