@@ -415,10 +415,29 @@ double GeodesicPropagation::dominated_run(const IndexEntry& o, const IndexEntry&
       good = bad;
       continue;
     }
+    // The root of f between good (f <= 0) and bad (f > 0), f monotone there:
+    // regula falsi with the Illinois rule (superlinear where bisection needs
+    // ~30 steps for this tolerance), falling back to bisection when the
+    // secant stalls; the bracket keeps f(good) <= 0 < f(bad).
     const double stop = 1e-9 * (hi - lo);
-    for (int it = 0; it < 60 && std::abs(bad - good) > stop; ++it) {
-      const double mid = 0.5 * (good + bad);
-      (f(mid) <= 0.0 ? good : bad) = mid;
+    double fg = f(good), fb = f(bad);
+    int side = 0;
+    for (int it = 0; it < 100 && std::abs(bad - good) > stop; ++it) {
+      double x = fb - fg > 0.0 ? good - fg * (bad - good) / (fb - fg) : 0.5 * (good + bad);
+      const double margin = 0.01 * std::abs(bad - good);
+      if (!(std::abs(x - good) > margin && std::abs(bad - x) > margin)) x = 0.5 * (good + bad);
+      const double fx = f(x);
+      if (fx <= 0.0) {
+        good = x;
+        fg = fx;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        bad = x;
+        fb = fx;
+        if (side == 1) fg *= 0.5;
+        side = 1;
+      }
     }
     return good;
   }
