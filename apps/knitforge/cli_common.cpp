@@ -194,6 +194,20 @@ nlohmann::json seams_json(const std::vector<Seam>& seams) {
   return {{"count", static_cast<int>(seams.size())}, {"length_mm", seam_length(seams)}, {"seams", list}};
 }
 
+void note_seams(const std::vector<Seam>& seams, int boundary_loops, int genus, const std::string& extra) {
+  if (seams.empty()) return;
+  note(fmt::format("cut the surface ({} boundary loop(s), genus {}) into a disk along {} seam(s), {:.1f} mm "
+                   "(seams.obj){}",
+                   boundary_loops, genus, seams.size(), seam_length(seams), extra));
+}
+
+void write_seams_obj(const std::string& outdir, const std::vector<Seam>& seams) {
+  if (seams.empty()) return;
+  std::vector<std::vector<Vec3>> lines;
+  for (const Seam& seam : seams) lines.push_back(seam.path);
+  write_polylines_obj((std::filesystem::path(outdir) / "seams.obj").string(), lines);
+}
+
 nlohmann::json scalar_stats_json(const ScalarStats& s) {
   return {{"count", s.count}, {"min", s.min}, {"mean", s.mean}, {"rms", s.rms},
           {"max", s.max},     {"p50", s.p50}, {"p90", s.p90},   {"p99", s.p99}};

@@ -116,6 +116,13 @@ void write_report_json(const std::string& path, const nlohmann::json& report, bo
 /// entry per seam (kind, on_source, length_mm, end points).
 nlohmann::json seams_json(const std::vector<Seam>& seams);
 
+/// The note a design command gives when it cut the surface into a disk
+/// (nothing when there are no seams); `extra` ends the line.
+void note_seams(const std::vector<Seam>& seams, int boundary_loops, int genus, const std::string& extra = "");
+
+/// Writes OUTDIR/seams.obj (one polyline per seam) when there are seams.
+void write_seams_obj(const std::string& outdir, const std::vector<Seam>& seams);
+
 /// Statistics for a report: count, min, mean, rms, max, p50, p90, p99.
 nlohmann::json scalar_stats_json(const ScalarStats& s);
 

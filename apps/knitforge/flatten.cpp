@@ -19,7 +19,6 @@
 #include "knitforge/geometry/cut_to_disk.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/io/mesh_io.h"
-#include "knitforge/io/polyline_obj.h"
 #include "knitforge/report/report_html.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/util/atomic_file.h"
@@ -93,11 +92,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       CutToDisk opened = cut_to_disk(input, seam_options, description);
       const TriMesh surface = std::move(opened.mesh);
       const std::vector<Seam> seams = std::move(opened.seams);
-      if (!seams.empty()) {
-        note(fmt::format("cut the surface ({} boundary loop(s), genus {}) into a disk along {} seam(s), {:.1f} mm "
-                         "(seams.obj)",
-                         opened.input_boundary_loops, opened.input_genus, seams.size(), seam_length(seams)));
-      }
+      note_seams(seams, opened.input_boundary_loops, opened.input_genus);
       std::vector<DartSpec> darts;
       if (!o->darts.empty()) darts = parse_darts_json(read_text_file(o->darts, "darts file"), o->darts, builtin ? 1.0 : scale);
       const double load_seconds = t.seconds();
@@ -169,11 +164,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       MeshWriteOptions plain_ply;
       plain_ply.ascii = o->ascii;
       write_mesh(out("target.ply"), surface, plain_ply);
-      if (!seams.empty()) {
-        std::vector<std::vector<Vec3>> lines;
-        for (const Seam& seam : seams) lines.push_back(seam.path);
-        write_polylines_obj(out("seams.obj"), lines);
-      }
+      write_seams_obj(o->outdir, seams);
       const std::string darts_text = darts_to_json(all_darts, builtin ? 1.0 : scale);
       write_file_atomically(out("darts.json"), [&](std::ostream& os) { os << darts_text; });
       if (k.knittability.ok()) {

@@ -197,12 +197,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       opt.surface_name = description;
       const ShortRowDesign d = design_short_rows(input, source, opt);
       const TriMesh& surface = d.surface;
-      if (!d.seams.empty()) {
-        note(fmt::format("cut the surface ({} boundary loop(s), genus {}) into a disk along {} seam(s), {:.1f} mm "
-                         "(seams.obj){}",
-                         d.input_boundary_loops, d.input_genus, d.seams.size(), seam_length(d.seams),
-                         d.source_on_seam ? "; the source lies on a seam" : ""));
-      }
+      note_seams(d.seams, d.input_boundary_loops, d.input_genus,
+                 d.source_on_seam ? "; the source lies on a seam" : "");
 
       // Outputs.
       note("writing outputs ...");
@@ -238,11 +234,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         for (const auto& w : level) wales.push_back(w.points);
       }
       write_polylines_obj(out("wales.obj"), wales);
-      if (!d.seams.empty()) {
-        std::vector<std::vector<Vec3>> seams;
-        for (const Seam& seam : d.seams) seams.push_back(seam.path);
-        write_polylines_obj(out("seams.obj"), seams);
-      }
+      write_seams_obj(o->outdir, d.seams);
       if (!d.wales.cuts.empty()) {
         std::vector<std::vector<Vec3>> cuts;
         for (const auto& c : d.wales.cuts) cuts.push_back(c.path);

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/chain_edges.h"
 #include "knitforge/geometry/cut_mesh_along_path.h"
 #include "knitforge/geometry/geodesic_path.h"
 #include "knitforge/geometry/halfedges.h"
@@ -413,43 +414,6 @@ std::vector<std::pair<int, int>> handle_cut_graph(const TriMesh& mesh, int genus
   return out;
 }
 
-/// Chains undirected edges into paths between vertices of degree != 2 (or
-/// around cycles); every edge appears in exactly one path.
-std::vector<std::vector<int>> chain_edges(const std::vector<std::pair<int, int>>& edges) {
-  std::unordered_map<int, std::vector<int>> inc;
-  for (int i = 0; i < static_cast<int>(edges.size()); ++i) {
-    inc[edges[i].first].push_back(i);
-    inc[edges[i].second].push_back(i);
-  }
-  std::vector<char> used(edges.size(), 0);
-  std::vector<std::vector<int>> out;
-  auto walk = [&](int start, int e0) {
-    std::vector<int> path{start};
-    int v = start, e = e0;
-    while (e >= 0 && !used[e]) {
-      used[e] = 1;
-      v = edges[e].first == v ? edges[e].second : edges[e].first;
-      path.push_back(v);
-      e = -1;
-      const auto& list = inc[v];
-      if (list.size() == 2)
-        for (int f : list)
-          if (!used[f]) e = f;
-    }
-    out.push_back(std::move(path));
-  };
-  std::vector<int> nodes;
-  for (const auto& [v, list] : inc) nodes.push_back(v);
-  std::sort(nodes.begin(), nodes.end());
-  for (int v : nodes)
-    if (inc[v].size() != 2)
-      for (int e : inc[v])
-        if (!used[e]) walk(v, e);
-  for (int e = 0; e < static_cast<int>(edges.size()); ++e)
-    if (!used[e]) walk(edges[e].first, e);
-  return out;
-}
-
 }  // namespace
 
 CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, const std::string& what) {
@@ -466,6 +430,14 @@ CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, cons
         what, top.components));
   }
   CutToDisk out;
+  auto add_seam = [&](SeamKind kind, bool on_source, const TriMesh& m, const std::vector<int>& path) {
+    Seam s;
+    s.kind = kind;
+    s.on_source = on_source;
+    s.path = positions(m, path);
+    s.length = path_length(m, path);
+    out.seams.push_back(std::move(s));
+  };
   out.input_boundary_loops = top.loops;
   out.input_genus = top.genus;
   const bool disk = top.loops == 1 && top.genus == 0;
@@ -516,13 +488,7 @@ CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, cons
   if (!cutter.pending_cuts().empty()) {
     std::vector<std::vector<int>> cuts = cutter.pending_cuts();
     cutter.pending_cuts().clear();
-    for (const auto& c : cuts) {
-      Seam s;
-      s.kind = SeamKind::User;
-      s.path = positions(cutter.mesh(), c);
-      s.length = path_length(cutter.mesh(), c);
-      out.seams.push_back(std::move(s));
-    }
+    for (const auto& c : cuts) add_seam(SeamKind::User, false, cutter.mesh(), c);
     cutter.cut(cuts);
     if (cutter.components_after_cut() > 1) {
       throw TopologyError(fmt::format(
@@ -548,14 +514,8 @@ CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, cons
     }
     if (t.genus > 0) {
       const auto edges = handle_cut_graph(cutter.mesh(), t.genus);
-      std::vector<std::vector<int>> paths = chain_edges(edges);
-      for (const auto& p : paths) {
-        Seam s;
-        s.kind = SeamKind::Handle;
-        s.path = positions(cutter.mesh(), p);
-        s.length = path_length(cutter.mesh(), p);
-        out.seams.push_back(std::move(s));
-      }
+      std::vector<std::vector<int>> paths = chain_edges(cutter.mesh().num_vertices(), edges);
+      for (const auto& p : paths) add_seam(SeamKind::Handle, false, cutter.mesh(), p);
       cutter.cut(paths);
       continue;
     }
@@ -591,12 +551,7 @@ CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, cons
     }
     first_loop_seam = false;
     if (path.size() < 2) throw SolverError(fmt::format("cut_to_disk: a seam of {} has no length", what));
-    Seam s;
-    s.kind = SeamKind::Loops;
-    s.on_source = on_source;
-    s.path = positions(cutter.mesh(), path);
-    s.length = path_length(cutter.mesh(), path);
-    out.seams.push_back(std::move(s));
+    add_seam(SeamKind::Loops, on_source, cutter.mesh(), path);
     cutter.cut({path});
   }
 

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/chain_edges.h"
 #include "knitforge/geometry/geodesic_path.h"
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/geometry/mesh_measures.h"
@@ -66,42 +67,15 @@ double mesh_scale(const TriMesh& mesh) {
   return d > 0.0 ? d : 1.0;
 }
 
-// Chains undirected segments between nodes into polylines: open chains first
-// (starting at nodes of degree != 2, in node order), then cycles (closed by
-// repeating their first point). Nodes without a segment become point sources.
+// The segments between nodes chained into polylines (chain_edges.h): open
+// chains first, then cycles; nodes without a segment become point sources.
 std::vector<std::vector<SurfacePoint>> chain_segments(const std::vector<SurfacePoint>& node_point,
                                                       const std::vector<std::pair<int, int>>& segments) {
-  const int n = static_cast<int>(node_point.size());
-  std::vector<std::vector<int>> inc(n);
-  for (int s = 0; s < static_cast<int>(segments.size()); ++s) {
-    inc[segments[s].first].push_back(s);
-    inc[segments[s].second].push_back(s);
-  }
-  std::vector<char> used(segments.size(), 0);
   std::vector<std::vector<SurfacePoint>> out;
-  auto walk = [&](int start, int first_seg) {
-    std::vector<SurfacePoint> line{node_point[start]};
-    int node = start;
-    int seg = first_seg;
-    while (seg >= 0) {
-      used[seg] = 1;
-      node = segments[seg].first == node ? segments[seg].second : segments[seg].first;
-      line.push_back(node_point[node]);
-      seg = -1;
-      if (inc[node].size() == 2)
-        for (int s : inc[node])
-          if (!used[s]) seg = s;
-    }
-    out.push_back(std::move(line));
-  };
-  for (int v = 0; v < n; ++v) {
-    if (inc[v].empty()) out.push_back({node_point[v]});
-    if (inc[v].size() == 2) continue;
-    for (int s : inc[v])
-      if (!used[s]) walk(v, s);
+  for (const std::vector<int>& path : chain_edges(static_cast<int>(node_point.size()), segments, true)) {
+    out.emplace_back();
+    for (int n : path) out.back().push_back(node_point[n]);
   }
-  for (int s = 0; s < static_cast<int>(segments.size()); ++s)
-    if (!used[s]) walk(segments[s].first, s);
   return out;
 }
 
