@@ -72,8 +72,7 @@ struct Piece {
 /// The mesh being cut and everything that has to follow it.
 class Cutter {
  public:
-  Cutter(const TriMesh& mesh, const std::string& what) : what_(what) {
-    mesh_ = mesh;
+  explicit Cutter(const TriMesh& mesh) : mesh_(mesh) {
     origin_.resize(mesh.num_vertices());
     for (int v = 0; v < mesh.num_vertices(); ++v) origin_[v] = v;
   }
@@ -230,7 +229,6 @@ class Cutter {
   std::vector<std::vector<int>>& pending_cuts() { return pending_cuts_; }
 
  private:
-  std::string what_;
   TriMesh mesh_;
   std::vector<int> origin_;
   std::vector<Piece> pieces_;
@@ -455,7 +453,7 @@ CutToDisk cut_to_disk(const TriMesh& mesh, const CutToDiskOptions& options, cons
         what));
   }
 
-  Cutter cutter(mesh, what);
+  Cutter cutter(mesh);
   // 1. The source becomes paths of mesh vertices.
   {
     std::vector<std::vector<MeshPoint>> lines;
