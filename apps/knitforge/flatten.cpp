@@ -32,7 +32,7 @@ nlohmann::json distortion_json(const DistortionStats& s) {
   return {{"min_log_sigma", s.min_log_sigma},   {"max_log_sigma", s.max_log_sigma},
           {"mean_log_sigma", s.mean_log_sigma}, {"rms_log_sigma", s.rms_log_sigma},
           {"area_3d_mm2", s.area_3d},           {"area_2d_mm2", s.area_2d},
-          {"flipped_faces", s.flipped_faces}};
+          {"max_abs_log_sigma", s.max_abs_log_sigma()}, {"flipped_faces", s.flipped_faces}};
 }
 
 std::string read_text(const std::string& path) {
@@ -52,7 +52,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts;
     int auto_darts = 0;
     double edge = kDefaultShapeEdgeLength;
-    bool allow_wide = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+    bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
   };
   auto o = std::make_shared<Opts>();
   std::string names;
@@ -67,6 +67,9 @@ void add_flatten_command(CLI::App& app, Action& action) {
   cmd->add_option("--auto-darts", o->auto_darts,
                   "Add up to N darts where the distortion is worst, while it goes down")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--auto-darts-rms-only", o->rms_only,
+                "Keep an automatic dart when it lowers the RMS distortion even if its tip raises the largest "
+                "(domes: by default such a dart is not kept)");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--allow-wide-darts", o->allow_wide,
@@ -107,7 +110,9 @@ void add_flatten_command(CLI::App& app, Action& action) {
       if (!darts.empty() || o->auto_darts > 0) {
         note(fmt::format("flattening with {} dart(s){} ...", darts.size(),
                          o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
-        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo);
+        DartHintOptions ho;
+        ho.require_lower_maximum = !o->rms_only;
+        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo, ho);
         flat = std::move(a.flattening);
         added = std::move(a.added);
         auto_stop = a.stop_reason;
@@ -115,7 +120,8 @@ void add_flatten_command(CLI::App& app, Action& action) {
         for (size_t k = 0; k < a.rms_sequence.size(); ++k) {
           const size_t n = darts.size() + k;
           if (n == 0) continue;
-          sequence.push_back({{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}});
+          sequence.push_back(
+              {{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}, {"max_abs_log_sigma", a.max_sequence[k]}});
         }
         sequence.back()["distortion"] = distortion_json(flat.stats);
       } else {
@@ -174,6 +180,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                               {"stitch_height_mm", params.stitch_height},
                               {"darts_file", o->darts},
                               {"auto_darts", o->auto_darts},
+                              {"auto_darts_rms_only", o->rms_only},
                               {"allow_wide_darts", o->allow_wide},
                               {"long_rows", !o->no_long_rows},
                               {"arap_tolerance", fo.tolerance},
@@ -184,8 +191,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
                               {"converged", flat.converged},
                               {"relative_energy", flat.relative_energy},
                               {"flipped_faces", flat.flipped_faces},
+                              {"arap_flipped_faces", flat.arap_flipped_faces},
+                              {"injective_solver", flat.injective_solver},
                               {"distortion_before_darts", sequence.front()["distortion"]},
                               {"distortion", distortion_json(flat.stats)},
+                              {"stitch_max_abs_log_sigma", flat.stitch_max_abs_log_sigma},
                               {"distortion_sequence", sequence}};
       nlohmann::json dl = nlohmann::json::array();
       for (size_t i = 0; i < flat.darts.size(); ++i) {
@@ -257,13 +267,21 @@ void add_flatten_command(CLI::App& app, Action& action) {
       write_report_html(o->outdir);
 
       note(fmt::format(
-          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}; map {} rows x {} columns, "
-          "{} stitches; {:.2f} s -> {}",
+          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}, largest |log sigma| {:.4f} (at stitch scale "
+          "{:.4f}){}; map {} rows x {} columns, {} stitches; {:.2f} s -> {}",
           flat.darts.size(), sequence.front()["distortion"]["rms_log_sigma"].get<double>(),
-          flat.stats.rms_log_sigma, r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+          flat.stats.rms_log_sigma, flat.stats.max_abs_log_sigma(), flat.stitch_max_abs_log_sigma,
+          !flat.injective_solver ? std::string()
+          : flat.arap_flipped_faces > 0
+              ? fmt::format(" (fold-free solver: ARAP folded {} face(s))", flat.arap_flipped_faces)
+              : fmt::format(" (fold-free solver: ARAP's largest was {:.4f})", flat.arap_max_abs_log_sigma),
+          r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+      if (o->auto_darts > 0) note("automatic darts: " + auto_stop);
       if (!flat.flipped_faces.empty()) {
-        note(fmt::format("{} face(s) are flipped in the pattern (listed in report.json); more darts may help",
+        // Cannot happen (the flattening is injective by construction); never reported as a success.
+        note(fmt::format("error: {} face(s) are flipped in the pattern (listed in report.json)",
                          flat.flipped_faces.size()));
+        return 1;
       }
       if (k.evaluation) {
         note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",

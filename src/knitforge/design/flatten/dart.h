@@ -91,7 +91,17 @@ struct DartResult {
 struct CutDarts {
   TriMesh mesh;
   std::vector<DartResult> darts;  ///< geometry fields (angles) not yet set
+  /// For every vertex of `mesh`, the vertex of the surface with every dart
+  /// closed again (the input as split along the darts) it is a copy of:
+  /// the two copies of a cut vertex share it. Empty before the first dart
+  /// (identity); numbered 0..K-1.
+  std::vector<int> vertex_class;
 };
+
+/// The surface with every dart of `cut` closed again: one vertex per class
+/// of cut.vertex_class (at the position of its copies), the faces of
+/// cut.mesh with their vertices replaced by their classes.
+TriMesh closed_darts_mesh(const CutDarts& cut);
 
 /// Splits and cuts `mesh` along every dart in order (split_mesh_along_path()
 /// then cut_mesh_along_path(), seed §2.B).
