@@ -51,7 +51,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
   struct Opts {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts;
     int auto_darts = 0;
-    double edge = kDefaultShapeEdgeLength;
+    double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
     bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
   };
   auto o = std::make_shared<Opts>();
@@ -66,16 +66,17 @@ void add_flatten_command(CLI::App& app, Action& action) {
   cmd->add_option("--darts", o->darts, "Darts to cut, as JSON (see docs/flatten.md)");
   cmd->add_option("--auto-darts", o->auto_darts,
                   "Add up to N darts where the distortion is worst, while it goes down")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--auto-darts-rms-only", o->rms_only,
                 "Keep an automatic dart when it lowers the RMS distortion even if its tip raises the largest "
                 "(domes: by default such a dart is not kept)");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--allow-wide-darts", o->allow_wide,
                 "Accept darts wider than the knittable angle (report them instead of failing)");
   cmd->add_flag("--no-long-rows", o->no_long_rows, "Do not add long rows at the bottom / top of the map");
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   cmd->callback([=, &action] {
@@ -83,10 +84,12 @@ void add_flatten_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->darts});
       Timer t;
       std::string description;
       bool builtin = false;
       TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description, &builtin);
+      check_surface_stitches(surface, description, params, o->max_stitches, 2500.0);
       require_disk(surface, description);
       std::vector<DartSpec> darts;
       if (!o->darts.empty()) darts = parse_darts_json(read_text(o->darts), o->darts, builtin ? 1.0 : scale);

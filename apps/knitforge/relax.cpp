@@ -21,15 +21,15 @@ void add_relax_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "Stitch mesh (.ply)")->required();
   add_stitch_option(*cmd, o->stitch);
   cmd->add_option("--iterations", o->relax.max_iterations, "Maximum Shape-Up iterations")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--warm-up", o->relax.warm_up,
                   "z warm-up amplitude, fraction of the map's diagonal (0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--ascii", o->ascii, "Write an ASCII PLY instead of binary");
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const KnitParams params = parse_stitch_size(o->stitch);
-      if (extension(o->output) != ".ply") throw InvalidInput(o->output + ": the stitch mesh is written as .ply");
+      check_output_file("-o", o->output, {".ply"}, {o->input});
       const StitchInput in = load_stitch_input(o->input);
       if (!in.is_map) throw InvalidInput(o->input + ": relax takes a knitting map (.csv)");
       Timer t;

@@ -150,24 +150,24 @@ void add_render_command(CLI::App& app, Action& action) {
                   "from the front, slightly from the side and below)");
   cmd->add_flag("--ortho", o->ortho, "Orthographic instead of perspective projection");
   cmd->add_option("--fov", o->fov, "Perspective vertical field of view in degrees (default 30)")
-      ->check(CLI::Range(1.0, 170.0));
+      ->check(number_in(1.0, 170.0));
   cmd->add_option("--size", o->size,
                   "Picture size WIDTHxHEIGHT in pixels (.png; .svg uses the width and aspect)");
   cmd->add_flag("--edges", o->edges, "PNG: draw stitch outlines (--mesh) or triangle edges");
   cmd->add_option("--units", o->units, "Units of a plain triangle-mesh input: mm, cm or m (default mm)");
   cmd->add_option("--radius", o->tube.radius, "Tube (yarn) radius in mm (0 = 0.12 x stitch width)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--plies", o->tube.plies, "Plies per yarn (sides of the twisted prism, default 6)")
-      ->check(CLI::Range(1, 64));
+      ->check(number_in(1, 64));
   cmd->add_option("--ply-vertices", o->tube.vertices_per_ply, "Cross-section vertices per ply (default 2)")
-      ->check(CLI::Range(1, 32));
+      ->check(number_in(1, 32));
   cmd->add_option("--ply-depth", o->tube.ply_depth, "Ply relief in [0, 1] (default 0.3)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_in(0.0, 1.0));
   cmd->add_option("--twist", o->tube.twist_per_mm, "Ply twist in turns per mm (default 0.15)");
   auto* ply_vertices_opt = cmd->get_option("--ply-vertices");
   auto* ring_spacing_opt = cmd->add_option("--ring-spacing", o->tube.ring_spacing,
                                            "Distance between tube cross-sections in mm (0 = radius)")
-                               ->check(CLI::NonNegativeNumber);
+                               ->check(non_negative_number());
   cmd->add_option("--detail", o->detail,
                   "Yarn tube detail: full (plies with relief, a cross-section every radius), preview (plain "
                   "twisted prism, a cross-section every mm) or auto (full up to " +
@@ -177,11 +177,8 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const KnitParams params = parse_stitch_size(o->stitch);
+      check_output_file("-o", o->output, {".glb", ".obj", ".svg", ".png"}, {o->input});
       const std::string ext = extension(o->output);
-      if (ext != ".glb" && ext != ".obj" && ext != ".svg" && ext != ".png") {
-        throw InvalidInput(
-            fmt::format("{}: unknown output format '{}'; use .glb, .obj, .svg or .png", o->output, ext));
-      }
       const auto [width, height] = parse_pixels(o->size);
       const CameraSpec spec = parse_camera(o->camera);
 

@@ -146,6 +146,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     int relax_iterations = -1;
     double bending = -1;
     double field_tolerance = -1;
+    double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
   };
   auto o = std::make_shared<Opts>();
@@ -162,26 +163,27 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                   "boundary:BEGIN,END[,LOOP] (arc-length fractions), boundary-vertices:I,J,..., vertex:I, "
                   "polyline:FILE.obj");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--diffusion-length", o->diffusion_length,
                   "Length (mm) the apex distance D is divided by in exp(-D^2) (default: the stitch width)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--lambda", o->lambda, "Initial bridge length limit in mm (default width + 2 x height)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
   cmd->add_option("--relax-iterations", o->relax_iterations,
                   "Shape-Up iterations of the evaluation's relaxation (default 60)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--field-tolerance", o->field_tolerance,
                   "Accuracy of the geodesic field as a fraction of the stitch width (default 1e-3; 0 = exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--bending", o->bending,
                   "Bending stiffness of the evaluation's rest shape, relative to the stitch shape (0 = none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
@@ -190,9 +192,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->cut});
       std::string description;
       Timer t;
       TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
+      // ~2.5 kB per stitch measured (5 GB for 2 million at 0.1 x 0.1 mm).
+      check_surface_stitches(surface, description, params, o->max_stitches, 2500.0);
       int cut_edges = 0;
       if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
       require_disk(surface, description);

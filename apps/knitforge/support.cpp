@@ -30,13 +30,16 @@ struct Common {
   double edge = kDefaultShapeEdgeLength;
 };
 
+/// The output check of the three commands (before any work).
+void check_common(const Common& c) { check_output_file("-o", c.output, {".stl", ".ply", ".obj", ".off"}, {c.input}); }
+
 void add_common(CLI::App& cmd, Common& c, const std::string& output_help) {
   cmd.add_option("input", c.input, "Surface mesh (.obj/.ply/.off/.stl) or a built-in shape: " + shape_list())
       ->required();
   cmd.add_option("-o,--output", c.output, output_help)->required();
   cmd.add_option("--units", c.units, "Units of the input mesh: mm, cm, m (outputs are in mm)");
   cmd.add_option("--edge", c.edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 }
 
 std::string size_text(const TriMesh& mesh) {
@@ -66,19 +69,20 @@ void add_support_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl for printing; .ply/.obj/.off)");
   cmd->add_option("--offset", o->offset, "Inward offset of the surface: the fabric thickness (mm, default 1)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--thickness", o->thickness,
                   "Make a hollow shell of this thickness (mm) instead of a solid with a base")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--base-height", o->base_height,
                   "Height of the base below the lowest point of the surface (mm, default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--base", o->base, "Base: 'projected' (boundary projected down) or 'rectangle' (seed)")
       ->check(CLI::IsMember({"projected", "rectangle"}));
   cmd->add_option("--margin", o->margin, "Margin of the rectangle base around the surface (mm, default 5)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       SupportOptions so;
@@ -110,14 +114,15 @@ void add_close_command(CLI::App& app, Action& action) {
   cmd->add_option("--alpha", o->alpha,
                   "Radius of the wrapping ball (mm): gaps narrower than about twice this are bridged "
                   "(default: bounding-box diagonal / 20)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--offset", o->offset, "Distance of the result from the input (mm, default alpha / 30)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag(
       "--no-cap", o->no_cap,
       "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh input = load_surface_or_shape(o->input, o->units, o->edge, description);
       AlphaCloseOptions ao;
@@ -142,12 +147,13 @@ void add_thicken_command(CLI::App& app, Action& action) {
   };
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl, .ply, .obj, .off)");
-  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")->required()->check(positive_number());
   cmd->add_option("--side", o->side,
                   "Where the material goes: 'both' (centred), 'outside' (along the normals), 'inside'")
       ->check(CLI::IsMember({"both", "outside", "inside"}));
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       ThickenOptions to;

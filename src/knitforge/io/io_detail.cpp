@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -17,6 +18,12 @@
 namespace knitforge::io_detail {
 
 std::string load_file(const std::string& path) {
+  {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      throw IOError(fmt::format("{}: is a directory, not a file; give the path of a file", path));
+    }
+  }
   std::ifstream in(path, std::ios::in | std::ios::binary);
   if (!in) {
     throw IOError(fmt::format("{}: cannot open file ({}); check the path", path, std::strerror(errno)));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -223,6 +224,7 @@ KnitoutFile parse_knitout(std::string_view text) {
 
   bool in_header = true;
   bool have_carriers = false;
+  std::map<std::string, int, std::less<>> carrier_index;  // name -> first index
   for (size_t li = 1; li < lines.size(); ++li) {
     const int line = static_cast<int>(li) + 1;
     const std::string_view raw = lines[li];
@@ -240,12 +242,13 @@ KnitoutFile parse_knitout(std::string_view text) {
           prog.carrier_names.clear();
           for (auto t : tokenize(h.value)) prog.carrier_names.emplace_back(t);
           have_carriers = true;
+          // Sorted lookup (a pairwise check was quadratic in the header's length).
+          carrier_index.clear();
           for (size_t a = 0; a < prog.carrier_names.size(); ++a) {
-            for (size_t b = a + 1; b < prog.carrier_names.size(); ++b) {
-              if (prog.carrier_names[a] == prog.carrier_names[b]) {
-                diag(Severity::Error, KnitoutRule::Header, line,
-                     fmt::format("carrier '{}' is named twice in ';;Carriers:'", prog.carrier_names[a]));
-              }
+            const auto [it, fresh] = carrier_index.emplace(prog.carrier_names[a], static_cast<int>(a));
+            if (!fresh) {
+              diag(Severity::Error, KnitoutRule::Header, line,
+                   fmt::format("carrier '{}' is named twice in ';;Carriers:'", prog.carrier_names[a]));
             }
           }
           if (prog.carrier_names.empty()) {
@@ -314,12 +317,12 @@ KnitoutFile parse_knitout(std::string_view text) {
     auto carrier_set = [&](size_t from) {
       std::vector<int> cs;
       for (size_t i = from; i < args.size(); ++i) {
-        const auto it = std::find(prog.carrier_names.begin(), prog.carrier_names.end(), args[i]);
-        if (it == prog.carrier_names.end()) {
+        const auto it = carrier_index.find(args[i]);
+        if (it == carrier_index.end()) {
           throw LineError{KnitoutRule::UndeclaredCarrier,
                           fmt::format("carrier '{}' is not named in the ';;Carriers:' header", args[i])};
         }
-        const int c = static_cast<int>(it - prog.carrier_names.begin());
+        const int c = it->second;
         if (std::find(cs.begin(), cs.end(), c) != cs.end()) {
           throw LineError{KnitoutRule::Syntax, fmt::format("carrier '{}' appears twice in the carrier set", args[i])};
         }
