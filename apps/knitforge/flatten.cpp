@@ -99,7 +99,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       fo.stitch_width = params.stitch_width;
       fo.stitch_height = params.stitch_height;
       fo.enforce_dart_angle = !o->allow_wide;
-      note("flattening without darts ...");
+      note("[  0 %] flattening without darts ...");
       t.reset();
       Flattening plain = flatten_surface(surface, {}, fo);
       const double plain_seconds = t.seconds();
@@ -111,7 +111,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       std::string auto_stop;
       std::vector<DartSpec> all_darts = darts;
       if (!darts.empty() || o->auto_darts > 0) {
-        note(fmt::format("flattening with {} dart(s){} ...", darts.size(),
+        note(fmt::format("[ 25 %] flattening with {} dart(s){} ...", darts.size(),
                          o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
         DartHintOptions ho;
         ho.require_lower_maximum = !o->rms_only;
@@ -132,13 +132,13 @@ void add_flatten_command(CLI::App& app, Action& action) {
       }
       const double darts_seconds = t.seconds();
 
-      note("rasterising the pattern and checking the map ...");
+      note("[ 50 %] rasterising the pattern and checking the map ...");
       KnitPatternOptions ko;
       ko.raster.long_rows = !o->no_long_rows;
       ko.evaluate = !o->no_evaluate;
       const KnitPatternResult k = knit_flattened_pattern(flat, surface, params, ko);
 
-      note("writing outputs ...");
+      note("[ 90 %] writing outputs ...");
       t.reset();
       const std::filesystem::path dir(o->outdir);
       std::filesystem::create_directories(dir);

@@ -50,6 +50,8 @@ void add_sample_map_command(CLI::App& app, Action& action) {
       if (cup_opts && o->name != "cup") throw InvalidInput("--wales/--turns apply to 'cup' only");
       KnittingMap map;
       if (o->name == "random" && random_opts) {
+        check_work({"sample-map random", static_cast<double>(o->random.rows) * o->random.cols, "cells", kDefaultMaxStitches,
+                    0.0, "use fewer --rows / --cols"});
         map = random_knitting_map(o->random);
       } else if (o->name == "cup" && cup_opts) {
         map = cup_knitting_map(o->cup);

@@ -200,7 +200,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       check_surface_stitches(surface, description, params, o->max_stitches, 2500.0);
       int cut_edges = 0;
       if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
-      require_disk(surface, description);
+      require_disk(surface, description, "pass --cut FILE.obj with the cut as polylines");
       const double load_seconds = t.seconds();
       const GeodesicSource source = parse_source(surface, o->source, scale);
 
@@ -213,7 +213,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (o->relax_iterations > 0) opt.evaluation.relax.max_iterations = o->relax_iterations;
       if (o->bending >= 0) opt.evaluation.relax.bending = o->bending;
       if (o->field_tolerance >= 0) opt.field_tolerance = o->field_tolerance;
-      opt.progress = [](const std::string& stage) { note(stage + " ..."); };
+      // Progress as the share of the route's stages begun (7, or 8 with the evaluation).
+      const int stages = opt.evaluate ? 8 : 7;
+      auto begun = std::make_shared<int>(0);
+      opt.progress = [stages, begun](const std::string& stage) {
+        note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / stages, stage));
+      };
       const ShortRowDesign d = design_short_rows(surface, source, opt);
 
       // Outputs.

@@ -106,7 +106,7 @@ void add_close_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "close", "Close a mesh into a watertight surface by alpha wrapping (the sock from a foot, seed 2.C.3)");
   struct Opts : Common {
-    double alpha = 0.0, offset = 0.0;
+    double alpha = 0.0, offset = 0.0, max_faces = 2e6;
     bool no_cap = false;
   };
   auto o = std::make_shared<Opts>();
@@ -120,6 +120,9 @@ void add_close_command(CLI::App& app, Action& action) {
   cmd->add_flag(
       "--no-cap", o->no_cap,
       "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
+  cmd->add_option("--max-faces", o->max_faces,
+                  "Refuse when the result is estimated above this many triangles (default 2 million, ~5 min)")
+      ->check(positive_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
       check_common(*o);
@@ -129,6 +132,7 @@ void add_close_command(CLI::App& app, Action& action) {
       ao.alpha = o->alpha;
       ao.offset = o->offset;
       ao.cap_holes = !o->no_cap;
+      ao.max_faces = o->max_faces;
       note("wrapping ...");
       const AlphaCloseResult r = alpha_close(input, ao);
       write_mesh(o->output, r.mesh);

@@ -188,3 +188,29 @@ TEST(KnitoutParse, CrLfGivesOneWarning) {
 TEST(KnitoutParse, ReadMissingFileThrows) {
   EXPECT_THROW(read_knitout("/nonexistent/dir/x.k"), IOError);
 }
+
+namespace knitforge {
+namespace {
+
+// A long ;;Carriers: header was checked pairwise for duplicates (quadratic):
+// 60,000 names with one repeated give exactly one duplicate error, and a
+// carrier far down the list is found.
+TEST(KnitoutParse, LongCarriersHeaderIsCheckedOnce) {
+  std::string header = ";!knitout-2\n;;Carriers:";
+  for (int c = 0; c < 60000; ++c) header += " c" + std::to_string(c);
+  header += " c17\n";
+  const KnitoutFile f = parse_knitout(header + "inhook c59999\ntuck + f1 c59999\nouthook c59999\n");
+  int duplicates = 0;
+  for (const auto& d : f.diagnostics) {
+    if (d.message.find("named twice") != std::string::npos) {
+      ++duplicates;
+      EXPECT_NE(d.message.find("'c17'"), std::string::npos) << d.message;
+    }
+    EXPECT_EQ(d.message.find("not named"), std::string::npos) << d.message;
+  }
+  EXPECT_EQ(duplicates, 1);
+  EXPECT_EQ(f.carrier_names.size(), 60001u);
+}
+
+}  // namespace
+}  // namespace knitforge

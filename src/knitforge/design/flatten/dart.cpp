@@ -16,12 +16,6 @@
 
 namespace knitforge {
 
-std::string_view to_string(DartType t) { return t == DartType::OneEnd ? "one-end" : "two-end"; }
-
-std::string_view to_string(DartOrientation o) {
-  return o == DartOrientation::Horizontal ? "horizontal" : "vertical";
-}
-
 double dart_angle_limit(DartOrientation orientation, double stitch_width, double stitch_height) {
   if (!(stitch_width > 0.0) || !(stitch_height > 0.0)) {
     throw InvalidInput("dart_angle_limit: the stitch size must be positive");

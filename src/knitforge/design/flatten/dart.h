@@ -27,8 +27,12 @@ namespace knitforge {
 enum class DartType { OneEnd, TwoEnd };
 enum class DartOrientation { Horizontal, Vertical };
 
-std::string_view to_string(DartType t);         ///< "one-end" / "two-end"
-std::string_view to_string(DartOrientation o);  ///< "horizontal" / "vertical"
+/// "one-end" / "two-end" (inline: the darts JSON reader needs no geometry).
+inline std::string_view to_string(DartType t) { return t == DartType::OneEnd ? "one-end" : "two-end"; }
+/// "horizontal" / "vertical".
+inline std::string_view to_string(DartOrientation o) {
+  return o == DartOrientation::Horizontal ? "horizontal" : "vertical";
+}
 
 /// A point of a dart path on the input surface: a vertex, or a face with
 /// barycentric coordinates, or a 3D position (mm) snapped to the closest
