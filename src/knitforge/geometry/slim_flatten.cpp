@@ -218,6 +218,7 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
   double residual = residual_of(uv);
   std::vector<Vec2> next(uv.size());
   std::vector<Eigen::Triplet<double>> trip;
+  SparseSolver solver;
   for (int it = 0; it < options.max_iterations && num_unknowns > 0; ++it) {
     // Local step + assembly of the proxy's normal equations.
     trip.clear();
@@ -271,7 +272,8 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
     }
     SparseMatrix A(num_unknowns, num_unknowns);
     A.setFromTriplets(trip.begin(), trip.end());
-    const Eigen::VectorXd x = SparseSolver(A).solve(rhs);
+    solver.refactor(A);  // same pattern every iteration: the ordering is computed once
+    const Eigen::VectorXd x = solver.solve(rhs);
 
     // Direction towards the proxy minimiser, cut before the first degenerate triangle.
     std::vector<Vec2> dir(uv.size(), Vec2::Zero());

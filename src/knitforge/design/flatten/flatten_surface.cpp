@@ -152,7 +152,6 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
     SlimFlattenOptions slim;
     slim.initial = injective_start(cut, unconstrained, tutte);
     slim.max_iterations = options.max_iterations;
-    slim.tolerance = options.tolerance;
     slim.equal_x = arap.equal_x;
     slim.equal_y = arap.equal_y;
     const SlimFlattenResult s = slim_flatten(out.mesh, slim);
