@@ -1,5 +1,15 @@
 #include "cli_common.h"
 
+#include <filesystem>
+
+#include "knitforge/io/knittability_json.h"
+#include "knitforge/machine/hand_instructions.h"
+#include "knitforge/machine/knitout_writer.h"
+#include "knitforge/machine/machine_knittability.h"
+#include "knitforge/machine/machine_profile.h"
+#include "knitforge/report/machine_report.h"
+#include "knitforge/util/atomic_file.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -282,6 +292,60 @@ void write_report_json(const std::string& path, const nlohmann::json& report, bo
   const std::string text = report.dump(2) + "\n";
   write_file_atomically(path, [&](std::ostream& os) { os << text; });
   if (print) std::fputs(text.c_str(), stdout);
+}
+
+void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& o) {
+  cmd.add_option("--machine", o.machine,
+                 "Machine to write the program for: shima-swg091n2 (knitout.k), kniterate, generic, brother-kh868 "
+                 "(hand instructions)")
+      ->capture_default_str();
+  cmd.add_flag("--no-knitout", o.no_knitout, "Do not write the machine program");
+  cmd.add_option("--waste-rows", o.waste_rows,
+                 "Courses of waste yarn before the fabric (at most 1000; default: the machine's, e.g. 70 on the "
+                 "Kniterate)")
+      ->check(number_in(0, 1000));
+}
+
+nlohmann::json design_machine_end(const DesignMachineOptions& o, const std::string& outdir, const KnittingMap& map,
+                                  bool map_knittable, const StitchMesh* designed, bool& machine_ok,
+                                  nlohmann::json& machine_check) {
+  const MachineProfile& prof = machine_profile(o.machine);
+  machine_ok = true;
+  if (o.no_knitout) return machine_report_skipped(prof, "--no-knitout");
+  if (!map_knittable) return machine_report_skipped(prof, "the design is not knittable");
+  const std::filesystem::path dir(outdir);
+  KnitoutOptions ko;
+  ko.waste_rows = o.waste_rows;
+  try {
+    if (prof.manual) {
+      const HandInstructions h = hand_instructions(map, prof);
+      const std::string file = (dir / "instructions.html").string();
+      write_file_atomically(file, [&](std::ostream& os) { os << hand_instructions_html(h); }, true);
+      note("hand instructions -> " + file);
+      return {{"profile", prof.name},        {"machine", prof.display_name}, {"verdict", "HAND INSTRUCTIONS"},
+              {"instructions", "instructions.html"}, {"stitches", map.num_stitches()},  {"courses", map.rows},
+              {"wales", map.cols},           {"hand_transfers", h.hand_transfers}};
+    }
+    const KnitoutProgram p = write_knitout(map, prof, ko);
+    const std::string file = (dir / "knitout.k").string();
+    write_file_atomically(file, [&](std::ostream& os) { os << p.text; }, true);
+    for (const auto& w : p.warnings) note("warning: " + w);
+    nlohmann::json j = machine_report_json(p, prof, map, "knitout.k", designed);
+    note(fmt::format("machine program -> {} ({}: {}, knit graph {} the map; {:.1f} min, {} transfer stitches)", file,
+                     prof.name, j["verdict"].get<std::string>(),
+                     j.value("matches_map", false) ? "MATCHES" : "DIFFERS from",
+                     j.value("knit_time_s", 0.0) / 60.0, j["shaping"]["transfer_stitches"].get<int>()));
+    return j;
+  } catch (const InvalidInput& e) {
+    // The machine cannot knit this (seed-knittable) map: say where.
+    machine_ok = false;
+    KnitoutOptions check_opt = ko;
+    machine_check = to_json(check_machine_knittability(map, prof, check_opt));
+    note(fmt::format("machine '{}' cannot knit the design: {}", prof.name, e.what()));
+    nlohmann::json j = machine_report_skipped(prof, e.what());
+    j["verdict"] = "CANNOT KNIT";
+    return j;
+  }
 }
 
 void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }

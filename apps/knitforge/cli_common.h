@@ -126,6 +126,25 @@ void write_report_json(const std::string& path, const nlohmann::json& report, bo
 /// Statistics for a report: count, min, mean, rms, max, p50, p90, p99.
 nlohmann::json scalar_stats_json(const ScalarStats& s);
 
+/// The machine options of a design command (--machine, --no-knitout,
+/// --waste-rows).
+struct DesignMachineOptions {
+  std::string machine = "shima-swg091n2";
+  bool no_knitout = false;
+  int waste_rows = -1;
+};
+void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& options);
+
+/// The machine end of a design command: for a knittable map, writes the
+/// machine program (OUTDIR/knitout.k for a two-bed machine, verified by the
+/// virtual machine; OUTDIR/instructions.html for a manual one) and returns
+/// the "machine" section of report.json; `machine_ok` is false when the
+/// machine cannot knit the map, and `machine_check` then holds the machine's
+/// knittability report (the cells and the reason).
+nlohmann::json design_machine_end(const DesignMachineOptions& options, const std::string& outdir,
+                                  const KnittingMap& map, bool map_knittable, const StitchMesh* designed,
+                                  bool& machine_ok, nlohmann::json& machine_check);
+
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);
 

@@ -19,7 +19,7 @@
 #include "knitforge/geometry/surface_checks.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/io/mesh_io.h"
-#include "knitforge/io/report_html.h"
+#include "knitforge/report/report_html.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/timer.h"
@@ -53,6 +53,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     int auto_darts = 0;
     double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
     bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+    DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
   std::string names;
@@ -79,6 +80,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
   add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
+  add_design_machine_options(*cmd, o->mach);
   cmd->callback([=, &action] {
     action = [=]() -> int {
       Timer all;
@@ -243,7 +245,15 @@ void add_flatten_command(CLI::App& app, Action& action) {
           {"increase", cells[3]}, {"decrease", cells[4]},       {"collapsed", cells[5]},
           {"empty", cells[6]}};
       report["knittability"] = to_json(k.knittability);
-      report["knittable"] = k.knittability.ok();
+      Timer tm;
+      bool machine_ok = true;
+      nlohmann::json machine_check;
+      report["machine"] = design_machine_end(o->mach, o->outdir, r.map, k.knittability.ok(),
+                                             k.designed.num_stitches() > 0 ? &k.designed : nullptr, machine_ok,
+                                             machine_check);
+      if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
+      const double machine_seconds = tm.seconds();
+      report["knittable"] = k.knittability.ok() && machine_ok;
       if (k.evaluation) {
         const StitchMeshEvaluation& ev = *k.evaluation;
         report["evaluation"] = {
@@ -264,7 +274,8 @@ void add_flatten_command(CLI::App& app, Action& action) {
                            {"knittability", k.seconds.check},
                            {"lift", k.seconds.lift},
                            {"evaluation", k.seconds.evaluate},
-                           {"output", t.seconds()}};
+                           {"machine", machine_seconds},
+                           {"output", t.seconds() - machine_seconds}};
       report["seconds"]["total"] = all.seconds();
       write_report_json(out("report.json"), report, o->json);
       write_report_html(o->outdir);
@@ -294,6 +305,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
       if (!k.knittability.ok()) {
         std::fprintf(stderr, "%s", k.knittability.text().c_str());
         note("the map is NOT knittable (details in report.json); outputs were written for inspection");
+        return 1;
+      }
+      if (!machine_ok) {
+        note(fmt::format("the design is NOT knittable on machine '{}' (details in report.json, machine_knittability)",
+                         o->mach.machine));
         return 1;
       }
       note("knittable: the map passes every check");

@@ -1,5 +1,7 @@
 // knitforge knitout: knitting map (.csv) or stitch mesh (.ply) -> knitout
 // program (.k) for a named machine profile.
+#include <numeric>
+
 #include <fmt/core.h>
 
 #include "cli_common.h"
@@ -17,7 +19,7 @@ void add_knitout_command(CLI::App& app, Action& action) {
     std::string input, output, machine = "shima-swg091n2", bind_off = "chain", carrier, waste_carrier,
                                 draw_carrier, position = "Center";
     double gauge = 0;
-    int waste_rows = 0, bind_off_waste_rows = 8, tail_rows = 4;
+    int waste_rows = -1, bind_off_waste_rows = 8, tail_rows = 4;
     bool open_turns = false;
     int stitch_number = -1, xfer_stitch_number = -1, speed_number = -1;
   };
@@ -35,8 +37,8 @@ void add_knitout_command(CLI::App& app, Action& action) {
   cmd->add_option("--waste-carrier", o->waste_carrier, "Waste yarn carrier (default: second)");
   cmd->add_option("--draw-carrier", o->draw_carrier, "Draw-thread carrier (default: third)");
   cmd->add_option("--waste-rows", o->waste_rows,
-                  "Courses of waste yarn before the fabric, followed by a draw thread (0: none; at most 1000)")
-      ->capture_default_str()
+                  "Courses of waste yarn before the fabric, followed by a draw thread (0: none; at most 1000; "
+                  "default: the machine's, e.g. 70 on the Kniterate, 16 on the Shima, 0 on generic)")
       ->check(number_in(0, 1000));
   cmd->add_option("--bind-off", o->bind_off, "chain (transfers + knitted tail) or waste (live loops on waste yarn)")
       ->capture_default_str();
@@ -49,11 +51,13 @@ void add_knitout_command(CLI::App& app, Action& action) {
   cmd->add_flag("--open-turns", o->open_turns, "Do not tuck on the held needle at short-row turns");
   cmd->add_option("--position", o->position, "Value of ;;Position: (Left, Center, Right, Keep)")
       ->capture_default_str();
-  cmd->add_option("--stitch-number", o->stitch_number, "Emit x-stitch-number N (N >= 0)")
+  cmd->add_option("--stitch-number", o->stitch_number,
+                  "x-stitch-number of the fabric courses (a stitch-table entry; Kniterate 0..9)")
       ->check(non_negative_number());
-  cmd->add_option("--xfer-stitch-number", o->xfer_stitch_number, "Emit x-xfer-stitch-number N (N >= 0)")
+  cmd->add_option("--xfer-stitch-number", o->xfer_stitch_number, "x-xfer-stitch-number of the fabric (Kniterate)")
       ->check(non_negative_number());
-  cmd->add_option("--speed-number", o->speed_number, "Emit x-speed-number N (N >= 0)")->check(non_negative_number());
+  cmd->add_option("--speed-number", o->speed_number, "x-speed-number of the fabric courses")
+      ->check(non_negative_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
       check_output_file("-o", o->output, {".k"}, {o->input});
@@ -71,9 +75,9 @@ void add_knitout_command(CLI::App& app, Action& action) {
       ko.close_turns = !o->open_turns;
       ko.gauge = o->gauge;
       ko.position = o->position;
-      if (o->stitch_number >= 0) ko.stitch_number = o->stitch_number;
-      if (o->xfer_stitch_number >= 0) ko.xfer_stitch_number = o->xfer_stitch_number;
-      if (o->speed_number >= 0) ko.speed_number = o->speed_number;
+      if (o->stitch_number >= 0) ko.body.stitch_number = std::to_string(o->stitch_number);
+      if (o->xfer_stitch_number >= 0) ko.body.xfer_stitch_number = std::to_string(o->xfer_stitch_number);
+      if (o->speed_number >= 0) ko.body.speed_number = o->speed_number;
       const StitchInput in = load_stitch_input(o->input);
       const KnittingMap map = in.is_map ? in.map : stitch_mesh_to_map(in.mesh);
       const KnitoutProgram prog = write_knitout(map, prof, ko);
@@ -81,11 +85,17 @@ void add_knitout_command(CLI::App& app, Action& action) {
       for (const auto& w : prog.warnings) note("warning: " + w);
       const KnitoutStats& s = prog.stats;
       note(fmt::format(
-          "{}: {} courses, {} stitches, {} increases, {} decreases, {} transfers in {} transfer passes, "
-          "{} racks, {} short-row turns ({} closed), needles f{}..f{} on {}",
-          o->output, s.courses, s.map_knits + s.map_tucks, s.increases, s.decreases, s.xfers,
-          s.transfer_passes, s.racks, s.inside_turns, s.closed_turns, s.first_needle, s.last_needle,
-          prof.name));
+          "{}: {} courses, {} stitches, {} increases, {} decreases ({} bound off at the edge), {} shaping "
+          "transfers ({} in all), {} racks, {} short-row turns ({} closed), {} waste courses, needles f{}..f{} on {}",
+          o->output, s.courses, s.map_knits + s.map_tucks, s.increases, s.decreases, s.edge_chained,
+          s.shaping_xfers, s.xfers, s.racks, s.inside_turns, s.closed_turns, s.waste_rows, s.first_needle,
+          s.last_needle, prof.name));
+      if (prog.simulation) {
+        const SimulationStats& ss = prog.simulation->stats;
+        note(fmt::format("virtual machine: VALID, knit graph MATCHES the map; estimated knitting time {:.1f} min, "
+                         "yarn {:.2f} m (estimate)",
+                         ss.time_s / 60.0, std::accumulate(ss.yarn_mm.begin(), ss.yarn_mm.end(), 0.0) / 1000.0));
+      }
       return 0;
     };
   });

@@ -5,7 +5,7 @@
 #include <fmt/core.h>
 
 #include "cli_common.h"
-#include "knitforge/io/report_html.h"
+#include "knitforge/report/report_html.h"
 
 namespace knitforge::cli {
 

@@ -26,7 +26,7 @@
 #include "knitforge/io/knitting_map_image.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/polyline_obj.h"
-#include "knitforge/io/report_html.h"
+#include "knitforge/report/report_html.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/util/timer.h"
 
@@ -148,6 +148,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double field_tolerance = -1;
     double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
+    DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
   std::string names;
@@ -187,6 +188,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
+  add_design_machine_options(*cmd, o->mach);
   cmd->callback([=, &action] {
     action = [=]() -> int {
       Timer all;
@@ -341,7 +343,14 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       report["field"] = {
           {"signed", d.field_signed}, {"windows", d.field_windows}, {"approximate", d.field_approximate}};
       report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
-      report["knittable"] = d.map_check.ok() && d.mesh_check.ok();
+      Timer tm;
+      bool machine_ok = true;
+      nlohmann::json machine_check;
+      report["machine"] = design_machine_end(o->mach, o->outdir, d.map, d.map_check.ok() && d.mesh_check.ok(),
+                                             &d.stitch_mesh, machine_ok, machine_check);
+      if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
+      const double machine_seconds = tm.seconds();
+      report["knittable"] = d.map_check.ok() && d.mesh_check.ok() && machine_ok;
       second.get();  // rethrows what the second thread threw
       report["seconds"] = {{"load", load_seconds},
                            {"field", d.seconds.field},
@@ -353,7 +362,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                            {"knittability", d.seconds.check},
                            {"evaluation", d.seconds.evaluation},
                            {"design_total", d.seconds.total},
-                           {"output", t.seconds()}};
+                           {"machine", machine_seconds},
+                           {"output", t.seconds() - machine_seconds}};
       report["seconds"]["total"] = all.seconds();
       write_report_json(out("report.json"), report, o->json);
       if (!o->no_report) {
@@ -394,6 +404,11 @@ void add_shortrow_command(CLI::App& app, Action& action) {
               "the plane rotated by 90 degrees (see docs/shortrow.md)",
               d.wales.cuts.size(), d.unpaired_pieces));
         }
+        return 1;
+      }
+      if (!machine_ok) {
+        note(fmt::format("the design is NOT knittable on machine '{}' (details in report.json, machine_knittability)",
+                         o->mach.machine));
         return 1;
       }
       note("knittable: the map passes every check");

@@ -10,6 +10,7 @@
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/machine/knit_graph_compare.h"
 #include "knitforge/machine/knitout_parse.h"
+#include "knitforge/machine/knitout_rules.h"
 #include "knitforge/machine/knitout_simulate.h"
 #include "knitforge/machine/machine_profile.h"
 
@@ -33,6 +34,8 @@ nlohmann::json to_json(const KnitoutSimulation& sim) {
                 {"splits", st.splits},
                 {"misses", st.misses},
                 {"transfers", st.transfers},
+                {"fabric_transfers", st.transfers_by_section[0]},
+                {"other_transfers", st.transfers - st.transfers_by_section[0]},
                 {"drops", st.drops},
                 {"loops", sim.graph.num_loops()},
                 {"min_needle", st.min_needle},
@@ -55,6 +58,7 @@ nlohmann::json to_json(const KnitoutSimulation& sim) {
     diags.push_back({{"line", d.line},
                      {"severity", d.severity == Severity::Error ? "error" : "warning"},
                      {"rule", std::string(name(d.rule))},
+                     {"check", std::string(knitout_check_id(d.check))},
                      {"message", d.message}});
   }
   return j;
@@ -83,22 +87,41 @@ nlohmann::json to_json(const GraphComparison& c) {
 void add_simulate_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "simulate",
-      "Run a knitout program (.k) on a virtual two-bed machine: report errors with line numbers and "
-      "statistics; with --against, check it knits the given map. Exit 0 when valid, 1 when not");
+      "Run a knitout program (.k) on a virtual two-bed machine and judge it as that machine's software does: "
+      "errors (what it cannot or must not execute) and warnings (what the fabric will suffer), with line "
+      "numbers and statistics; with --against, check it knits the given map. Exit 0 when there is no error "
+      "(warnings allowed), 1 when there is");
   struct Opts {
-    std::string input, machine = "shima-swg091n2", against;
-    bool json = false;
+    std::string input, machine = "shima-swg091n2", against, strict;
+    bool json = false, rules = false;
   };
   auto o = std::make_shared<Opts>();
-  cmd->add_option("input", o->input, "Knitout program (.k)")->required();
-  cmd->add_option("--machine", o->machine, "Machine profile (shima-swg091n2, kniterate, generic)");
-  cmd->add_option("--against", o->against, "Knitting map (.csv) or stitch mesh (.ply) the program should knit");
+  cmd->add_option("input", o->input, "Knitout program (.k)");
+  cmd->add_option("--machine", o->machine, "Machine profile (shima-swg091n2, kniterate, generic)")
+      ->capture_default_str();
+  cmd->add_option("--against", o->against,
+                  "Knitting map (.csv) or stitch mesh (.ply) the program should knit (implies --strict all)");
+  cmd->add_option("--strict", o->strict,
+                  "Warning categories to treat as errors: all, none, or a comma-separated list (e.g. "
+                  "drop,loops-left,float)");
+  cmd->add_flag("--rules", o->rules, "Print the machine's rules (check, category, level, source) as Markdown");
   cmd->add_flag("--json", o->json, "Print the report as JSON");
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const MachineProfile& profile = machine_profile(o->machine);
+      if (o->rules) {
+        std::printf("%s", machine_rules_markdown(profile).c_str());
+        return 0;
+      }
+      if (o->input.empty()) {
+        std::fprintf(stderr, "knitforge: usage error: simulate: the knitout program (.k) is required (or --rules)\n");
+        return 2;
+      }
+      SimulateOptions so;
+      so.strict = parse_strict_rules(o->strict);
+      if (!o->against.empty()) so.strict = all_rules_strict();
       const KnitoutFile file = read_knitout(o->input);
-      const KnitoutSimulation sim = simulate_knitout(file, profile);
+      const KnitoutSimulation sim = simulate_knitout(file, profile, so);
       bool ok = sim.ok();
       nlohmann::json j;
       if (o->json) {

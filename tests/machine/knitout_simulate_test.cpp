@@ -169,9 +169,29 @@ TEST(KnitoutSimulate, RejectsTooManyLoopsOnANeedle) {
   expect_single_error(s, KnitoutRule::LoopsPerNeedle, 18);
 }
 
-TEST(KnitoutSimulate, RejectsLongFloat) {
-  expect_single_error(run(kStart + "tuck + f30 1\n" + kEnd), KnitoutRule::Float, 15);
-  EXPECT_TRUE(run(kStart + "tuck + f22 1\n" + kEnd).ok());  // 20 needles from f2
+// The only warning of `s` must be of `rule` at `line`, and no error.
+void expect_single_warning(const KnitoutSimulation& s, KnitoutRule rule, int line) {
+  ASSERT_EQ(s.errors, 0) << dump(s);
+  ASSERT_EQ(s.warnings, 1) << dump(s);
+  for (const auto& d : s.diagnostics) {
+    EXPECT_EQ(d.rule, rule) << d.message;
+    EXPECT_EQ(d.line, line) << d.message;
+  }
+}
+
+KnitoutSimulation run_strict(const std::string& body, const std::string& strict) {
+  SimulateOptions o;
+  o.strict = parse_strict_rules(strict);
+  return simulate_knitout(parse_knitout(";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\n" + body), shima(), o);
+}
+
+TEST(KnitoutSimulate, LongFloatIsAWarningUnlessStrict) {
+  // No translator refuses a float; the fabric snags (the VKM warns).
+  expect_single_warning(run(kStart + "tuck + f30 1\n" + kEnd), KnitoutRule::Float, 15);
+  EXPECT_EQ(run(kStart + "tuck + f22 1\n" + kEnd).warnings, 0);  // 20 needles from f2
+  expect_single_error(run_strict(kStart + "tuck + f30 1\n" + kEnd, "float"), KnitoutRule::Float, 15);
+  // another category strict leaves it a warning
+  EXPECT_TRUE(run_strict(kStart + "tuck + f30 1\n" + kEnd, "drop,loops-left").ok());
 }
 
 TEST(KnitoutSimulate, RejectsSecondInhookWhileHookHolds) {
@@ -211,22 +231,48 @@ TEST(KnitoutSimulate, RejectsHookLeftHolding) {
   EXPECT_EQ(s.error_counts[static_cast<int>(KnitoutRule::CarrierLeftIn)], 1);
 }
 
-TEST(KnitoutSimulate, WarnsHookedCarrierStartingRightwards) {
+TEST(KnitoutSimulate, WarnsCarrierStartingTowardsItsParkingSide) {
+  // Shima-like: carriers wait at the right, so the first pass goes '-'.
   const KnitoutSimulation s = run("inhook 1\ntuck + f2 1\nreleasehook 1\nouthook 1\n; leave-loops\n");
-  EXPECT_TRUE(s.ok()) << dump(s);
-  EXPECT_EQ(s.warning_counts[static_cast<int>(KnitoutRule::Hook)], 1);
+  expect_single_warning(s, KnitoutRule::CarrierDirection, 4);
+  EXPECT_EQ(s.diagnostics[0].check, KnitoutCheck::FirstPassDirection);
 }
 
-TEST(KnitoutSimulate, RejectsDropOfLiveFabric) {
-  expect_single_error(run(kStart + "drop f1\n" + kEnd), KnitoutRule::Drop, 15);
+TEST(KnitoutSimulate, KniterateCarriersMustStartRightwards) {
+  // The Kniterate translator parks carriers left of needle 0: a first pass to
+  // the left writes corrupt k-code ("properly ordered carrier stops").
+  const std::string head = ";!knitout-2\n;;Carriers: 1 2 3 4 5 6\n";
+  const auto& kn = machine_profile("kniterate");
+  const KnitoutSimulation bad =
+      simulate_knitout(parse_knitout(head + "in 1\ntuck - f4 1\ntuck - f2 1\nout 1\n; leave-loops\n"), kn);
+  expect_single_error(bad, KnitoutRule::CarrierDirection, 4);
+  // One 'miss +' first fixes it, as it fixes the translator's output.
+  const KnitoutSimulation good = simulate_knitout(
+      parse_knitout(head + "in 1\nmiss + f1 1\ntuck - f4 1\ntuck - f2 1\nout 1\n; leave-loops\n"), kn);
+  EXPECT_TRUE(good.ok()) << dump(good);
+  EXPECT_EQ(good.warnings, 0) << dump(good);
+  // The generic profile has no parking side.
+  const KnitoutSimulation gen = simulate_knitout(
+      parse_knitout(head + "in 1\ntuck - f4 1\ntuck - f2 1\nout 1\n; leave-loops\n"), machine_profile("generic"));
+  EXPECT_TRUE(gen.ok()) << dump(gen);
+  EXPECT_EQ(gen.warnings, 0) << dump(gen);
+}
+
+TEST(KnitoutSimulate, DropOfLiveFabricIsAWarningThatTheWaleRuns) {
+  const KnitoutSimulation s = run(kStart + "drop f1\n" + kEnd);
+  expect_single_warning(s, KnitoutRule::Drop, 15);
+  EXPECT_EQ(s.diagnostics[0].check, KnitoutCheck::Run);
+  ASSERT_GE(s.diagnostics[0].loop, 0);
+  EXPECT_EQ(s.graph.loops[static_cast<size_t>(s.diagnostics[0].loop)].line, 13);  // the dropped knit loop
+  expect_single_error(run_strict(kStart + "drop f1\n" + kEnd, "drop"), KnitoutRule::Drop, 15);
   // Dropping a tuck loop (nothing pulled through, nothing below) is fine.
   const KnitoutSimulation ok = run(kStart + "tuck - f6 1\ndrop f6\n" + kEnd);
-  EXPECT_TRUE(ok.ok()) << dump(ok);
+  EXPECT_EQ(ok.warnings + ok.errors, 0) << dump(ok);
   // ... and so is dropping loops knitted after a waste (or bind-off) marker,
   // but not fabric loops knitted before it.
   const KnitoutSimulation waste = run(kStart + "; waste yarn\nknit - f2 1\ndrop f2\n" + kEnd);
-  EXPECT_TRUE(waste.ok()) << dump(waste);
-  expect_single_error(run(kStart + "; waste yarn\ndrop f1\n" + kEnd), KnitoutRule::Drop, 16);
+  EXPECT_EQ(waste.warnings + waste.errors, 0) << dump(waste);
+  expect_single_warning(run(kStart + "; waste yarn\ndrop f1\n" + kEnd), KnitoutRule::Drop, 16);
 }
 
 TEST(KnitoutSimulate, WarnsKnitOnEmptyNeedle) {
@@ -237,12 +283,14 @@ TEST(KnitoutSimulate, WarnsKnitOnEmptyNeedle) {
   EXPECT_EQ(s.diagnostics[0].line, 15);
 }
 
-TEST(KnitoutSimulate, RejectsLoopsLeftWithoutIntention) {
+TEST(KnitoutSimulate, LoopsLeftAreAWarningUnlessStated) {
   const KnitoutSimulation s = run(kStart + "outhook 1\n");
-  expect_single_error(s, KnitoutRule::LoopsLeft, 15);
+  expect_single_warning(s, KnitoutRule::LoopsLeft, 15);
   int live = 0;
   for (const auto& l : s.graph.loops) live += l.live_at_end;
   EXPECT_EQ(live, 4);
+  EXPECT_EQ(run(kStart + kEnd).warnings, 0);  // '; leave-loops' states it
+  expect_single_error(run_strict(kStart + "outhook 1\n", "all"), KnitoutRule::LoopsLeft, 15);
 }
 
 TEST(KnitoutSimulate, RejectsNeedlesBeyondTheBed) {
@@ -261,10 +309,23 @@ TEST(KnitoutSimulate, RejectsAbsurdNeedleNumbersWithoutAllocating) {
   expect_single_error(run(kStart + "tuck + f2000000000 1\n" + kEnd), KnitoutRule::Width, 15);
 }
 
-TEST(KnitoutSimulate, ExtensionsAreWarningsOnly) {
-  const KnitoutSimulation s = run(kStart + "x-speed-number 300\n" + kEnd);
-  EXPECT_TRUE(s.ok());
-  EXPECT_EQ(s.warning_counts[static_cast<int>(KnitoutRule::Extension)], 1);
+TEST(KnitoutSimulate, ExtensionsAreCheckedAgainstTheMachinesSoftware) {
+  // Known to the SWG translator, with a valid value: nothing to say.
+  EXPECT_EQ(run(kStart + "x-speed-number 10\nx-presser-mode auto\n" + kEnd).warnings, 0);
+  // Unknown there: ignored with a warning.
+  expect_single_warning(run(kStart + "x-roller-advance 300\n" + kEnd), KnitoutRule::Extension, 15);
+  // Known with a value the translator refuses.
+  expect_single_error(run(kStart + "x-presser-mode sideways\n" + kEnd), KnitoutRule::Extension, 15);
+  expect_single_error(run(kStart + "x-stitch-number -3\n" + kEnd), KnitoutRule::Extension, 15);
+  // The Kniterate reads stitch numbers 0-9 / A-Z and its roller extensions.
+  const auto& kn = machine_profile("kniterate");
+  const std::string head = ";!knitout-2\n;;Carriers: 1 2 3 4 5 6\n";
+  const std::string tail = "in 1\ntuck + f2 1\nout 1\n; leave-loops\n";
+  const KnitoutSimulation k1 =
+      simulate_knitout(parse_knitout(head + "x-stitch-number A\nx-roller-advance 400\n" + tail), kn);
+  EXPECT_EQ(k1.errors + k1.warnings, 0) << dump(k1);
+  const KnitoutSimulation k2 = simulate_knitout(parse_knitout(head + "x-stitch-number 12\n" + tail), kn);
+  expect_single_error(k2, KnitoutRule::Extension, 3);
 }
 
 TEST(KnitoutSimulate, SyntaxErrorsMakeTheProgramInvalid) {
@@ -322,4 +383,87 @@ TEST(KnitoutSimulate, DiagnosticsAreCappedButCounted) {
       simulate_knitout(parse_knitout(";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\n" + body), shima(), o);
   EXPECT_EQ(s.errors, 150);
   EXPECT_EQ(s.diagnostics.size(), 10u);
+}
+
+TEST(KnitoutSimulate, GenericProfileAcceptsEverySpecOperation) {
+  // Hook operations on a machine without hook: read as in / (nothing) / out,
+  // with a warning on the generic profile, an error on the Kniterate.
+  const std::string body = "inhook 1\ntuck - f2 1\ntuck + f1 1\nreleasehook 1\nknit - f2 1\nknit - f1 1\nouthook 1\n"
+                           "; leave-loops: fragment\n";
+  const KnitoutSimulation g = simulate_knitout(
+      parse_knitout(";!knitout-2\n;;Carriers: 1 2 3\n" + body), machine_profile("generic"));
+  EXPECT_TRUE(g.ok()) << dump(g);
+  EXPECT_EQ(g.warning_counts[static_cast<int>(KnitoutRule::Hook)], 3) << dump(g);
+  EXPECT_EQ(g.stats.carriers_in, 1);
+  EXPECT_EQ(g.stats.carriers_out, 1);
+  const KnitoutSimulation k = simulate_knitout(
+      parse_knitout(";!knitout-2\n;;Carriers: 1 2 3 4 5 6\n" + body), machine_profile("kniterate"));
+  EXPECT_EQ(k.error_counts[static_cast<int>(KnitoutRule::Hook)], 3) << dump(k);
+  // A carrier left in: the spec does not forbid it (generic: warning), both
+  // translators refuse it (Shima, Kniterate: error).
+  const std::string left = ";!knitout-2\n;;Carriers: 1 2 3 4 5 6\nin 1\ntuck - f2 1\n; leave-loops\n";
+  EXPECT_TRUE(simulate_knitout(parse_knitout(left), machine_profile("generic")).ok());
+  EXPECT_FALSE(simulate_knitout(parse_knitout(left), machine_profile("kniterate")).ok());
+}
+
+TEST(KnitoutSimulate, KniterateKnitsQuarterPitchAtHalfPitch) {
+  // knitout-to-kcode.js adds 0.25 to a racking with fraction .25; other
+  // fractions than .0 / .5 are refused.
+  const std::string head = ";!knitout-2\n;;Carriers: 1 2 3 4 5 6\nin 1\ntuck + f1 1\n";
+  const std::string tail = "rack 0\nout 1\n; leave-loops\n";
+  const auto& kn = machine_profile("kniterate");
+  const KnitoutSimulation q = simulate_knitout(parse_knitout(head + "rack 0.25\ntuck + b1 1\n" + tail), kn);
+  expect_single_warning(q, KnitoutRule::Racking, 5);
+  EXPECT_EQ(q.diagnostics[0].check, KnitoutCheck::QuarterPitchAsHalf);
+  // at half pitch back needle 1 sits at slot 1.5
+  ASSERT_EQ(q.graph.num_loops(), 2);
+  EXPECT_DOUBLE_EQ(q.graph.loops[1].slot, 1.5);
+  const KnitoutSimulation m = simulate_knitout(parse_knitout(head + "rack -0.75\n" + tail), kn);  // -> -0.5
+  EXPECT_TRUE(m.ok()) << dump(m);
+  expect_single_error(simulate_knitout(parse_knitout(head + "rack 0.75\n" + tail), kn), KnitoutRule::Racking, 5);
+  expect_single_error(simulate_knitout(parse_knitout(head + "rack -0.25\n" + tail), kn), KnitoutRule::Racking, 5);
+  // The SWG translator takes quarter pitch and refuses half pitch.
+  EXPECT_TRUE(run(kStart + "rack 0.25\nrack 0\n" + kEnd).ok());
+  expect_single_error(run(kStart + "rack 0.5\nrack 0\n" + kEnd), KnitoutRule::Racking, 15);
+}
+
+TEST(KnitoutSimulate, NamedMachinesNeedTheirTranslatorsCarrierHeader) {
+  const std::string body = "in 1\ntuck + f2 1\nout 1\n; leave-loops\n";
+  const KnitoutSimulation k =
+      simulate_knitout(parse_knitout(";!knitout-2\n;;Carriers: 1 2 3\n" + body), machine_profile("kniterate"));
+  expect_single_error(k, KnitoutRule::Header, 2);
+  EXPECT_EQ(k.diagnostics[0].check, KnitoutCheck::CarrierNames);
+  const KnitoutSimulation g =
+      simulate_knitout(parse_knitout(";!knitout-2\n;;Carriers: 1 2 3\n" + body), machine_profile("generic"));
+  EXPECT_EQ(g.errors + g.warnings, 0) << dump(g);
+}
+
+TEST(KnitoutSimulate, KniterateKnitsWithOneCarrierAtATime) {
+  const KnitoutSimulation k = simulate_knitout(
+      parse_knitout(";!knitout-2\n;;Carriers: 1 2 3 4 5 6\nin 1 2\nknit + f1 1 2\nknit + f2 1 2\nout 1 2\n"
+                    "; leave-loops\n"),
+      machine_profile("kniterate"));
+  EXPECT_EQ(k.error_counts[static_cast<int>(KnitoutRule::InactiveCarrier)], 2) << dump(k);  // plating, twice
+  EXPECT_TRUE(simulate_knitout(parse_knitout(";!knitout-2\n;;Carriers: 1 2 3 4 5 6 7 8 9 10\nin 1 2\nknit - f2 1 2\n"
+                                             "knit - f1 1 2\nout 1 2\n; leave-loops\n"),
+                               shima())
+                  .ok());
+}
+
+TEST(KnitoutSimulate, PassesAreRecordedWithTheirLines) {
+  const KnitoutSimulation s = run(kStart + kEnd);
+  // tucks -, tucks +, knit -, knit +: four knit passes
+  ASSERT_EQ(s.passes.size(), 4u) << dump(s);
+  EXPECT_EQ(s.passes[0].first_line, 4);
+  EXPECT_EQ(s.passes[0].last_line, 5);
+  EXPECT_EQ(s.passes[0].tucks, 2);
+  EXPECT_EQ(s.passes[2].knits, 4);
+  EXPECT_EQ(s.passes[2].direction, -1);
+  EXPECT_DOUBLE_EQ(s.passes[2].min_slot, 1.0);
+  EXPECT_DOUBLE_EQ(s.passes[2].max_slot, 4.0);
+  double t = 0;
+  for (const auto& p : s.passes) t += p.time_s;
+  EXPECT_GT(t, 0.0);
+  EXPECT_LE(t, s.stats.time_s);
+  for (const auto& l : s.graph.loops) EXPECT_GE(l.pass, 0);
 }

@@ -75,7 +75,9 @@ TEST(KnitoutWriter, HeadersComeFirstAndAreExact) {
 TEST(KnitoutWriter, RectangleIsPlainCastOnCoursesAndChainBindOff) {
   const auto& prof = machine_profile("shima-swg091n2");
   const auto map = test::rectangle_map();
-  const auto p = write_knitout(map, prof);
+  KnitoutOptions plain;
+  plain.waste_rows = 0;
+  const auto p = write_knitout(map, prof, plain);
   // 6 needles: 3 tucks leftwards + 3 rightwards, 1 cast-on course, 4 courses,
   // 5 chain steps (1 knit each), 4 tail knits.
   EXPECT_EQ(p.stats.tucks, 6);
@@ -91,7 +93,7 @@ TEST(KnitoutWriter, RectangleIsPlainCastOnCoursesAndChainBindOff) {
   EXPECT_EQ(count_lines_starting(p.text, "outhook 1"), 1);
   // releasehook comes before the first transfer
   EXPECT_LT(p.text.find("releasehook 1"), p.text.find("xfer"));
-  expect_valid(map, prof, {}, "rectangle");
+  expect_valid(map, prof, plain, "rectangle");
 }
 
 TEST(KnitoutWriter, HandMadeMapsAreValidOnEveryTwoBedProfile) {
@@ -196,20 +198,38 @@ TEST(KnitoutWriter, WasteSectionAndWasteBindOff) {
   EXPECT_EQ(res.carriers_used, (std::set<std::string>{"1", "2", "3"}));
 }
 
-TEST(KnitoutWriter, StitchAndSpeedSettingsAreOptional) {
+TEST(KnitoutWriter, StitchAndSpeedSettingsFollowTheMachine) {
+  // Shima: no settings unless asked for (its stitch table is the machine's own).
   const auto& prof = machine_profile("shima-swg091n2");
   const auto plain = write_knitout(test::rectangle_map(), prof);
   EXPECT_EQ(plain.text.find("x-"), std::string::npos);
   KnitoutOptions o;
-  o.stitch_number = 32;
-  o.speed_number = 200;
-  o.xfer_stitch_number = 20;
+  o.body.stitch_number = "32";
+  o.body.speed_number = 10;
   o.gauge = 12;
   const auto p = write_knitout(test::rectangle_map(), prof, o);
   EXPECT_NE(p.text.find("\nx-stitch-number 32\n"), std::string::npos);
-  EXPECT_NE(p.text.find("\nx-speed-number 200\n"), std::string::npos);
-  EXPECT_NE(p.text.find("\nx-xfer-stitch-number 20\n"), std::string::npos);
+  EXPECT_NE(p.text.find("\nx-speed-number 10\n"), std::string::npos);
   EXPECT_NE(p.text.find(";;Gauge: 12\n"), std::string::npos);
+  // the SWG translator does not read x-xfer-stitch-number
+  KnitoutOptions x;
+  x.body.xfer_stitch_number = "20";
+  EXPECT_THROW(write_knitout(test::rectangle_map(), prof, x), InvalidInput);
+  // Kniterate: settings per section from its translator's defaults; stitch
+  // numbers are 0-9 / A-Z there.
+  const auto& kn = machine_profile("kniterate");
+  const auto k = write_knitout(test::rectangle_map(), kn);
+  const auto waste = k.text.find("; waste:");
+  const auto cast_on = k.text.find("; cast-on:");
+  const auto course0 = k.text.find("; course 0:");
+  ASSERT_NE(waste, std::string::npos);
+  EXPECT_LT(waste, k.text.find("x-roller-advance 400"));
+  EXPECT_LT(k.text.find("x-stitch-number 6"), cast_on);
+  EXPECT_LT(cast_on, k.text.find("x-stitch-number 5"));
+  EXPECT_LT(k.text.find("x-stitch-number 5"), course0);
+  KnitoutOptions big;
+  big.body.stitch_number = "12";
+  EXPECT_THROW(write_knitout(test::rectangle_map(), kn, big), InvalidInput);
 }
 
 TEST(KnitoutWriter, RejectsBadInputWithClearErrors) {

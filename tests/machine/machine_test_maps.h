@@ -35,9 +35,12 @@ inline KnittingMap short_column_map() {
   return parse_map({"KKKK.KK", "KKKKDKK", "KKKKKKK", "KKKKKKK", "KKKKIKK", "KKKK.KK"});
 }
 
-// The fabric widens by one wale on each side, then narrows again.
+// The fabric widens by one wale on each side, then narrows again; each
+// course widens or narrows at its end, where the carriage turns (a course
+// that started beyond the last stitch of the one below would break the
+// one-stroke order, seed §1.2.2).
 inline KnittingMap boundary_shaping_map() {
-  return parse_map({"__KKKK_", "_KKKKK_", "KKKKKKK", "KKKKKK_", "_KKKKK_", "_KKKK__"});
+  return parse_map({"_KKKK__", "_KKKK__", "_KKKKK_", "KKKKKK_", "KKKKK__", "_KKKK__"});
 }
 
 // Fourteen increases in one course: far wales move more than 4 needles.

@@ -12,7 +12,7 @@
 // <artifacts dir>/web_report/.
 import { createRequire } from "node:module";
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdirSync, rmSync, writeFileSync } from "node:fs";
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import { pathToFileURL } from "node:url";
 
@@ -194,6 +194,32 @@ try {
   check(metrics.includes("short row pairs") && metrics.includes("rms mm") && metrics.includes("0.42"), "the metrics of report.json are listed");
   const knitout = await page.textContent("#panel-knitout");
   check(/operations/.test(knitout) && /knit/.test(knitout), "the knitout statistics are listed");
+
+  // The knitter's summary of a real design run (shortrow writes knitout.k and
+  // the machine section of report.json).
+  const design2 = path.join(art, "design-shortrow");
+  run("shortrow", "disk", "--stitch", "5x4", "--no-evaluate", "-o", design2);
+  const metrics2 = JSON.parse(readFileSync(path.join(design2, "report.json"), "utf8"));
+  await page.goto(pathToFileURL(path.join(design2, "report.html")).href);
+  await page.waitForFunction(() => window.knitforgeReport && (window.knitforgeReport.ready || window.knitforgeReport.error), null, { timeout: 60000 });
+  check(await page.locator("#panel-summary").isVisible(), "the knitter's summary is shown");
+  const firstPanel = await page.evaluate(() => document.querySelector("main section.panel").id);
+  check(firstPanel === "panel-summary", "the knitter's summary comes first", firstPanel);
+  const verdict = await page.textContent("#machine-verdict");
+  check(/^VALID/.test(verdict) && /knits exactly the designed map/.test(verdict), "the machine verdict is VALID and matches the map", verdict);
+  const stitches = await page.textContent("#summary-stitches td:last-child");
+  check(stitches.replace(/,/g, "") === String(metrics2.machine.stitches) && metrics2.machine.stitches === metrics2.counts.stitches,
+    "the summary's stitch count is the design's", `${stitches} vs ${metrics2.counts.stitches}`);
+  const summaryText = await page.textContent("#knitter-summary");
+  for (const want of ["finished size", "courses \u00d7 wales", "knitting time", "yarn", "shaping transfers", "gauge 15"]) {
+    check(summaryText.includes(JSON.parse(`"${want}"`)), `the summary lists ${JSON.parse(`"${want}"`)}`);
+  }
+  const yarn = await page.textContent("#summary-yarn td:last-child");
+  check(/carrier 1 \(main\): [0-9.]+ m/.test(yarn) && /waste/.test(yarn), "yarn per carrier with its role", yarn);
+  const hrefs = await page.$$eval("#downloads a", (as) => as.map((a) => a.getAttribute("href")));
+  check(hrefs.includes("knitout.k") && hrefs.includes("knitting_map.csv"), "download links for the program and the map", hrefs.join(", "));
+  check(hrefs.every((h) => existsSync(path.join(design2, decodeURI(h)))), "every download link points at a file of the run");
+  await page.screenshot({ path: path.join(art, "summary.png") });
 
   check(errors.length === 0, "no console errors, page errors or network requests", errors.join(" | "));
 } finally {

@@ -1,11 +1,12 @@
 // knitforge report viewer: reads the design data embedded in report.html
 // (<script type="application/json" id="knitforge-data">, written by
-// src/knitforge/io/report_html.cpp) and builds the page. Works from file://
+// src/knitforge/report/report_html.cpp) and builds the page. Works from file://
 // without any network access: everything is in the one HTML file.
 import cssText from "./style.css";
 import { createView3d } from "./view3d.js";
 import { createMapView } from "./mapview.js";
 import { jsonNode } from "./tables.js";
+import { knitterSummary } from "./summary.js";
 
 // State for tests and for the load-time measurement (tests/web/).
 const state = { ready: false, firstFrameMs: null, error: null };
@@ -46,6 +47,12 @@ function build(data) {
   document.body.append(header, main);
 
   const done = [];
+  const summary = data.metrics ? knitterSummary(data.metrics.machine, data.metrics, data.files) : null;
+  if (summary) {
+    const sec = panel("For the knitter", "panel-summary", true);
+    sec.append(summary);
+    main.append(sec);
+  }
   const has3d = data.target || data.stitch_mesh || data.relaxed || data.yarn || data.wales;
   if (has3d) {
     const sec = panel("3D view", "panel-3d", !data.map);

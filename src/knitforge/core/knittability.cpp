@@ -25,7 +25,7 @@ constexpr std::string_view kRuleIds[kNumKnitRules] = {
     "stacked-short-row-ends", "unpaired-short-row-end",
     "collapsed-crossing",     "split-row",
     "invalid-direction",      "invalid-yarn",
-    "empty-row",              "map-topology",
+    "empty-row",              "map-topology",           "machine-limit",
 };
 
 constexpr std::string_view kSideNames[] = {"Bottom", "Right", "Top", "Left"};

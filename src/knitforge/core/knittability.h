@@ -15,6 +15,7 @@
 
 #include "knitforge/core/stitch_mesh.h"
 #include "knitforge/geometry/vec.h"
+#include "knitforge/util/severity.h"
 
 namespace knitforge {
 
@@ -43,13 +44,12 @@ enum class KnitRule : uint8_t {
   InvalidYarn = 17,           ///< "invalid-yarn": a negative yarn index
   EmptyRow = 18,              ///< "empty-row": a map row without any stitch
   MapTopology = 19,           ///< "map-topology": the map's cells do not form a valid stitch mesh
+  // --- machine rules (machine/machine_knittability.h) ---
+  MachineLimit = 20,          ///< "machine-limit": the machine cannot knit the map within its limits
 };
-inline constexpr int kNumKnitRules = 20;
+inline constexpr int kNumKnitRules = 21;
 
-enum class Severity : uint8_t {
-  Error = 0,    ///< the design cannot be knitted (reliably) as it is
-  Warning = 1,  ///< knittable, but against a convention (see rule_severity)
-};
+
 
 /// The stable id of a rule ("cyclic-row", ...).
 std::string_view rule_id(KnitRule r);

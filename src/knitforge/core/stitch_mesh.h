@@ -45,6 +45,12 @@ inline int apex_vertex(const Stitch& s) {
   return k < 0 ? -1 : s.v[k];
 }
 
+/// The vertices of a stitch's bottom edge (its two bottom corners; the apex
+/// for an Increase, whose bottom side has collapsed).
+std::vector<int> bottom_vertices(const Stitch& s);
+/// The vertices of a stitch's top edge (the apex for a Decrease).
+std::vector<int> top_vertices(const Stitch& s);
+
 /// Centroid of a stitch's corners.
 Vec3 stitch_centroid(const StitchMesh& mesh, int stitch);
 

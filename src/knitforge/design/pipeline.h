@@ -34,7 +34,7 @@
 ///   stitch_mesh_to_yarn()            convert/stitch_mesh_to_yarn.h  the yarn model
 ///   write_knitout()                  machine/knitout_writer.h       the machine program (CLI: knitout)
 ///   yarn_tubes(), vector_drawing(), rasterize()  render/           pictures (CLI: render)
-///   write_report_html()              io/report_html.h               report.html (CLI: report)
+///   write_report_html()              report/report_html.h               report.html (CLI: report)
 
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/design/flatten/knit_flattened_pattern.h"

@@ -66,6 +66,8 @@ HandInstructions hand_instructions(const KnittingMap& map, const MachineProfile&
   lo.close_turns = opt.wrap_turns;
   lo.max_closure_loops = 2;
   const NeedleLayout L = plan_needle_layout(map, lo);
+  if (!L.problems.empty())
+    throw InvalidInput(fmt::format("the {} cannot knit this map: {}", prof.display_name, L.problems.front().message));
   const int width = L.max_needle - L.min_needle + 1;
   if (width > NB)
     throw InvalidInput(fmt::format("the fabric needs {} needles at its widest; the {} has {}",
@@ -203,13 +205,32 @@ HandInstructions hand_instructions(const KnittingMap& map, const MachineProfile&
 
     int nst = 0;
     for (int c = L.first_col[r]; c <= L.last_col[r]; ++c) nst += is_stitch(map.at(r, c));
-    const int a = K(r, hr.direction > 0 ? L.first_col[r] : L.last_col[r]);
+    int a = K(r, hr.direction > 0 ? L.first_col[r] : L.last_col[r]);
     const int b = K(r, hr.direction > 0 ? L.last_col[r] : L.first_col[r]);
+    for (const LayoutChain& ch : L.chains) {
+      if (ch.row != r) continue;
+      const int n0 = K(r, ch.cols.front()), n1 = K(r, ch.cols.back()), onto = K(r, ch.onto_col);
+      const bool at_start = ch.cols.front() == (hr.direction > 0 ? L.first_col[r] : L.last_col[r]);
+      const std::string what = fmt::format(
+          "cast off the {} stitch{} of {} with the latch tool (chain cast-off from {} to {}), put the last loop "
+          "onto {} and push the emptied needles to non-working position A",
+          ch.cols.size(), ch.cols.size() == 1 ? "" : "es", range_label(std::min(n0, n1), std::max(n0, n1), NB),
+          lab(n0), lab(n1), lab(onto));
+      if (at_start) {
+        // the carriage side: these are the row's first stitches
+        hr.before.push_back("At the carriage side, " + what + " (they are this row's stitches of those wales)");
+        nst -= static_cast<int>(ch.cols.size());
+        a = onto;
+      } else {
+        hr.after.push_back("After the row, " + what + " (its wales end here)");
+      }
+      H.hand_transfers += static_cast<int>(ch.cols.size());
+    }
     hr.knit = fmt::format("Carriage {}: knit {} to {} ({} stitch{})",
                           hr.direction > 0 ? "left -> right" : "right -> left", lab(a), lab(b), nst,
                           nst == 1 ? "" : "es");
     if (L.closure_col[r] >= 0) {
-      hr.after.push_back(fmt::format(
+      hr.after.insert(hr.after.begin(), fmt::format(
           "Short-row turn: wrap the yarn under held needle {} before the next row (no hole)",
           lab(K(r, L.closure_col[r]))));
       ++H.wraps;
@@ -279,7 +300,8 @@ std::string hand_instructions_html(const HandInstructions& h) {
       fmt::format_to(out, "</ul>");
     }
     fmt::format_to(out, "</td><td>{}</td><td>", html_escape(r.knit));
-    for (const auto& s : r.after) fmt::format_to(out, "{}", html_escape(s));
+    for (size_t i = 0; i < r.after.size(); ++i)
+      fmt::format_to(out, "{}{}", i ? "<br>" : "", html_escape(r.after[i]));
     fmt::format_to(out, "</td><td class=\"done\"></td></tr>\n");
   }
   fmt::format_to(out, "</tbody>\n</table>\n<h2>Finish</h2>\n<ul>\n");

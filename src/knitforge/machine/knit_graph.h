@@ -45,6 +45,8 @@ struct KnitLoop {
   LoopKind kind = LoopKind::Knit;
   LoopSection section = LoopSection::Fabric;
   int line = 0;           ///< knitout line of the forming operation
+  int pass = -1;          ///< index of the knit pass that formed it (KnitoutSimulation::passes)
+  double slot = 0.0;      ///< bed position when formed (front n: n; back n: n + racking)
   int child = -1;         ///< the loop later pulled through this one, -1 when none
   int transfers = 0;      ///< how many times it was moved to another needle
   bool on_empty_needle = false;  ///< the needle held no loop when it was formed

@@ -22,22 +22,6 @@ std::vector<int> fabric_loops(const KnitGraph& graph) {
 
 namespace {
 
-// The vertices of a stitch's bottom edge (the apex for an Increase).
-std::vector<int> bottom_vertices(const Stitch& s) {
-  if (s.type == StitchType::Increase) return {s.v[0]};
-  const int k = edge_of_side(s.type, Side::Bottom);
-  if (k < 0) return {};
-  return {s.v[static_cast<size_t>(k)], s.v[static_cast<size_t>((k + 1) % s.corners())]};
-}
-
-// The vertices of a stitch's top edge (the apex for a Decrease).
-std::vector<int> top_vertices(const Stitch& s) {
-  if (s.type == StitchType::Decrease) return {apex_vertex(s)};
-  const int k = edge_of_side(s.type, Side::Top);
-  if (k < 0) return {};
-  return {s.v[static_cast<size_t>(k)], s.v[static_cast<size_t>((k + 1) % s.corners())]};
-}
-
 bool shares_vertex(const std::vector<int>& a, const std::vector<int>& b) {
   for (int v : a) {
     if (std::find(b.begin(), b.end(), v) != b.end()) return true;
@@ -99,6 +83,17 @@ GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& ma
     for (int v : bottoms[static_cast<size_t>(s)]) bottom_users[static_cast<size_t>(v)].push_back(s);
   }
 
+  // A stitch whose wale ends with a free top: no later stitch touches it (the
+  // fabric edge narrows there).
+  auto free_end = [&](int s) {
+    if (adj.neighbor(s, Side::Top) >= 0) return false;
+    for (int v : top_vertices(mesh.stitches[static_cast<size_t>(s)])) {
+      for (int u : bottom_users[static_cast<size_t>(v)])
+        if (u != s) return false;
+    }
+    return true;
+  };
+
   for (int k = 0; k < n; ++k) {
     const Stitch& S = mesh.stitches[static_cast<size_t>(k)];
     const int li = fab[static_cast<size_t>(k)];
@@ -134,6 +129,9 @@ GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& ma
           shares_vertex(top_vertices(mesh.stitches[static_cast<size_t>(ps)]), bottoms[static_cast<size_t>(k)])) {
         continue;
       }
+      // An edge bind-off chain: the previous stitch of S's course ends its
+      // wale with a free top and its loop was passed over onto S's needle.
+      if (adj.next_in_course(ps) == k && free_end(ps)) continue;
       report("wale", k, li,
              fmt::format("{} is pulled through the loop of {} (line {}), which is not below it in the map",
                          cell(k), cell(ps), graph.loops[static_cast<size_t>(p)].line));

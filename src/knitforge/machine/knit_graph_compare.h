@@ -23,7 +23,10 @@
 ///    (none when S has no Bottom neighbour: cast-on row, increase) plus the
 ///    loops of stitches whose wale ends (no Top neighbour: a Decrease, or an
 ///    outside decrease at the fabric edge) with a top corner on S's bottom
-///    edge (a decrease's loop is pulled through by the neighbouring wale);
+///    edge (a decrease's loop is pulled through by the neighbouring wale),
+///    plus the loop of the previous stitch of S's course when that stitch
+///    ends its wale with a free top (no later stitch touches it): an edge
+///    bind-off chain, knit and pass over (needle_layout.h);
 ///  - decreases: the loop of a stitch without Top neighbour whose top
 ///    corner is on the bottom edge of a later stitch is pulled through by the
 ///    fabric loop of such a stitch.

@@ -3,36 +3,17 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
-#include <map>
 #include <sstream>
+
+#include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/core.h>
 
 #include "knitforge/util/errors.h"
+#include "knitforge/util/printable.h"
 
 namespace knitforge {
-
-std::string_view name(KnitoutRule rule) {
-  switch (rule) {
-    case KnitoutRule::Syntax: return "syntax";
-    case KnitoutRule::Header: return "header";
-    case KnitoutRule::Extension: return "extension";
-    case KnitoutRule::UndeclaredCarrier: return "undeclared-carrier";
-    case KnitoutRule::InactiveCarrier: return "inactive-carrier";
-    case KnitoutRule::CarrierLeftIn: return "carrier-left-in";
-    case KnitoutRule::Racking: return "racking";
-    case KnitoutRule::Misaligned: return "misaligned";
-    case KnitoutRule::Slider: return "slider";
-    case KnitoutRule::LoopsPerNeedle: return "loops-per-needle";
-    case KnitoutRule::Float: return "float";
-    case KnitoutRule::Hook: return "hook";
-    case KnitoutRule::Drop: return "drop";
-    case KnitoutRule::EmptyNeedleKnit: return "empty-needle-knit";
-    case KnitoutRule::LoopsLeft: return "loops-left";
-    case KnitoutRule::Width: return "width";
-  }
-  return "unknown";
-}
 
 std::string_view name(KnitoutOp op) {
   switch (op) {
@@ -79,7 +60,7 @@ namespace {
 
 // A syntax problem on the current line; caught per line.
 struct LineError {
-  KnitoutRule rule;
+  KnitoutCheck check;
   std::string message;
 };
 
@@ -118,7 +99,7 @@ double parse_number(std::string_view tok, const char* what) {
     }
   }
   if (digits <= 0 || dots > 1) {
-    throw LineError{KnitoutRule::Syntax, fmt::format("{} '{}' is not a number", what, tok)};
+    throw LineError{KnitoutCheck::Malformed, fmt::format("{} '{}' is not a number", what, printable(tok))};
   }
   double v = 0.0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -128,7 +109,7 @@ double parse_number(std::string_view tok, const char* what) {
     if (!tmp.empty() && tmp.back() == '.') tmp.pop_back();
     const auto r2 = std::from_chars(tmp.data(), tmp.data() + tmp.size(), v);
     if (r2.ec != std::errc() || r2.ptr != tmp.data() + tmp.size()) {
-      throw LineError{KnitoutRule::Syntax, fmt::format("{} '{}' is not a number", what, tok)};
+      throw LineError{KnitoutCheck::Malformed, fmt::format("{} '{}' is not a number", what, printable(tok))};
     }
   }
   return neg ? -v : v;
@@ -137,7 +118,7 @@ double parse_number(std::string_view tok, const char* what) {
 int8_t parse_direction(std::string_view tok) {
   if (tok == "+") return 1;
   if (tok == "-") return -1;
-  throw LineError{KnitoutRule::Syntax, fmt::format("direction '{}' must be '+' or '-'", tok)};
+  throw LineError{KnitoutCheck::Malformed, fmt::format("direction '{}' must be '+' or '-'", printable(tok))};
 }
 
 Needle parse_needle(std::string_view tok) {
@@ -150,8 +131,8 @@ Needle parse_needle(std::string_view tok) {
     n.bed = s[0] == 'f' ? Bed::Front : Bed::Back;
     s.remove_prefix(1);
   } else {
-    throw LineError{KnitoutRule::Syntax,
-                    fmt::format("needle '{}' must be f, b, fs or bs followed by an integer", tok)};
+    throw LineError{KnitoutCheck::Malformed,
+                    fmt::format("needle '{}' must be f, b, fs or bs followed by an integer", printable(tok))};
   }
   bool neg = false;
   if (!s.empty() && (s[0] == '-' || s[0] == '+')) {
@@ -161,8 +142,8 @@ Needle parse_needle(std::string_view tok) {
   int v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size()) {
-    throw LineError{KnitoutRule::Syntax,
-                    fmt::format("needle '{}' must be f, b, fs or bs followed by an integer", tok)};
+    throw LineError{KnitoutCheck::Malformed,
+                    fmt::format("needle '{}' must be f, b, fs or bs followed by an integer", printable(tok))};
   }
   n.index = neg ? -v : v;
   return n;
@@ -172,59 +153,58 @@ Needle parse_needle(std::string_view tok) {
 
 KnitoutFile parse_knitout(std::string_view text) {
   KnitoutFile prog;
-  auto diag = [&](Severity s, KnitoutRule r, int line, std::string msg) {
-    prog.diagnostics.push_back({s, r, line, std::move(msg)});
+  auto diag = [&](Severity s, KnitoutCheck c, int line, std::string msg) {
+    prog.diagnostics.push_back({s, knitout_check_rule(c), c, line, std::move(msg)});
   };
 
-  // Split into lines (LF); strip a CR before LF with one warning.
+  // Split into lines at LF, CR LF or a lone CR; other line endings than LF
+  // give one warning (the spec asks readers to accept them and warn).
   std::vector<std::string_view> lines;
+  int odd_ending_line = 0;
   {
     size_t start = 0;
-    while (start <= text.size()) {
-      size_t end = text.find('\n', start);
-      if (end == std::string_view::npos) {
-        if (start < text.size()) lines.push_back(text.substr(start));
-        break;
+    for (size_t k = 0; k < text.size(); ++k) {
+      if (text[k] != '\n' && text[k] != '\r') continue;
+      lines.push_back(text.substr(start, k - start));
+      if (text[k] == '\r') {
+        if (odd_ending_line == 0) odd_ending_line = static_cast<int>(lines.size());
+        if (k + 1 < text.size() && text[k + 1] == '\n') ++k;
       }
-      lines.push_back(text.substr(start, end - start));
-      start = end + 1;
+      start = k + 1;
     }
+    if (start < text.size()) lines.push_back(text.substr(start));
   }
   prog.num_lines = static_cast<int>(lines.size());
-  bool warned_cr = false;
-  for (size_t i = 0; i < lines.size(); ++i) {
-    if (!lines[i].empty() && lines[i].back() == '\r') {
-      lines[i].remove_suffix(1);
-      if (!warned_cr) {
-        diag(Severity::Warning, KnitoutRule::Syntax, static_cast<int>(i) + 1,
-             "CR LF line endings are not standard knitout (use LF)");
-        warned_cr = true;
-      }
-    }
+  if (odd_ending_line > 0) {
+    diag(Severity::Warning, KnitoutCheck::LineEndings, odd_ending_line,
+         "CR LF (or CR) line endings are not standard knitout (use LF); read as LF");
   }
 
   if (lines.empty() || lines[0].substr(0, 10) != ";!knitout-") {
-    diag(Severity::Error, KnitoutRule::Syntax, 1,
+    diag(Severity::Error, KnitoutCheck::MagicLine, 1,
          "the first line must be the magic line ';!knitout-2'; this is not a knitout file");
   } else {
     int v = 0;
     const std::string_view num = lines[0].substr(10);
     const auto r = std::from_chars(num.data(), num.data() + num.size(), v);
-    if (num.empty() || r.ec != std::errc() || r.ptr != num.data() + num.size()) {
-      diag(Severity::Error, KnitoutRule::Syntax, 1,
-           fmt::format("malformed magic line '{}'; expected ';!knitout-2'", lines[0]));
+    if (num.empty() || r.ec != std::errc() || r.ptr != num.data() + num.size() || v < 0) {
+      diag(Severity::Error, KnitoutCheck::MagicLine, 1,
+           fmt::format("malformed magic line '{}'; expected ';!knitout-N' with a version number, e.g. "
+                       "';!knitout-2'",
+                       printable(lines[0])));
     } else {
       prog.version = v;
       if (v != 2) {
-        diag(v > 2 ? Severity::Error : Severity::Warning, KnitoutRule::Syntax, 1,
-             fmt::format("knitout version {} (this reader implements version 2)", v));
+        diag(Severity::Warning, KnitoutCheck::Version, 1,
+             fmt::format("knitout version {}: read as version 2 (the version this reader implements){}", v,
+                         v > 2 ? "; operations of later versions are reported as unknown" : ""));
       }
     }
   }
 
   bool in_header = true;
   bool have_carriers = false;
-  std::map<std::string, int, std::less<>> carrier_index;  // name -> first index
+  std::unordered_map<std::string, int> carrier_index;
   for (size_t li = 1; li < lines.size(); ++li) {
     const int line = static_cast<int>(li) + 1;
     const std::string_view raw = lines[li];
@@ -236,52 +216,55 @@ KnitoutFile parse_knitout(std::string_view text) {
         KnitoutHeader h{std::string(raw.substr(2, colon - 2)), std::string(raw.substr(colon + 2)), line};
         if (h.key == "Carriers") {
           if (have_carriers) {
-            diag(Severity::Warning, KnitoutRule::Header, line,
+            diag(Severity::Warning, KnitoutCheck::HeaderUnknown, line,
                  "';;Carriers:' given twice; the last one is used");
           }
           prog.carrier_names.clear();
-          for (auto t : tokenize(h.value)) prog.carrier_names.emplace_back(t);
           have_carriers = true;
-          // Sorted lookup (a pairwise check was quadratic in the header's length).
-          carrier_index.clear();
-          for (size_t a = 0; a < prog.carrier_names.size(); ++a) {
-            const auto [it, fresh] = carrier_index.emplace(prog.carrier_names[a], static_cast<int>(a));
-            if (!fresh) {
-              diag(Severity::Error, KnitoutRule::Header, line,
-                   fmt::format("carrier '{}' is named twice in ';;Carriers:'", prog.carrier_names[a]));
+          std::unordered_set<std::string_view> seen;
+          for (auto t : tokenize(h.value)) {
+            if (!seen.insert(t).second) {
+              diag(Severity::Error, KnitoutCheck::HeaderValue, line,
+                   fmt::format("carrier '{}' is named twice in ';;Carriers:'", printable(t)));
+              continue;
             }
+            prog.carrier_names.emplace_back(t);
           }
+          carrier_index.clear();
+          for (size_t k = 0; k < prog.carrier_names.size(); ++k)
+            carrier_index.emplace(prog.carrier_names[k], static_cast<int>(k));
           if (prog.carrier_names.empty()) {
-            diag(Severity::Error, KnitoutRule::Header, line, "';;Carriers:' names no carrier");
+            diag(Severity::Error, KnitoutCheck::CarriersHeader, line, "';;Carriers:' names no carrier");
           }
         } else if (h.key == "Position") {
           if (h.value != "Left" && h.value != "Center" && h.value != "Right" && h.value != "Keep") {
-            diag(Severity::Error, KnitoutRule::Header, line,
-                 fmt::format("';;Position:' is '{}'; it must be Left, Center, Right or Keep", h.value));
+            diag(Severity::Error, KnitoutCheck::HeaderValue, line,
+                 fmt::format("';;Position:' is '{}'; it must be Left, Center, Right or Keep", printable(h.value)));
           }
         } else if (h.key == "Gauge") {
           try {
-            if (parse_number(h.value, "gauge") <= 0.0) throw LineError{KnitoutRule::Header, ""};
+            if (parse_number(h.value, "gauge") <= 0.0) throw LineError{KnitoutCheck::HeaderValue, ""};
           } catch (const LineError&) {
-            diag(Severity::Error, KnitoutRule::Header, line,
-                 fmt::format("';;Gauge:' is '{}'; it must be a positive number", h.value));
+            diag(Severity::Error, KnitoutCheck::HeaderValue, line,
+                 fmt::format("';;Gauge:' is '{}'; it must be a positive number", printable(h.value)));
           }
         } else if (h.key == "Width") {
           try {
             const double w = parse_number(h.value, "width");
-            if (w <= 0.0 || w != static_cast<int>(w)) throw LineError{KnitoutRule::Header, ""};
+            if (w <= 0.0 || w != static_cast<int>(w)) throw LineError{KnitoutCheck::HeaderValue, ""};
           } catch (const LineError&) {
-            diag(Severity::Error, KnitoutRule::Header, line,
-                 fmt::format("';;Width:' is '{}'; it must be a positive integer", h.value));
+            diag(Severity::Error, KnitoutCheck::HeaderValue, line,
+                 fmt::format("';;Width:' is '{}'; it must be a positive integer", printable(h.value)));
           }
         } else if (h.key != "Machine" && h.key.rfind("Yarn-", 0) != 0) {
-          diag(Severity::Warning, KnitoutRule::Header, line, fmt::format("unknown header ';;{}:'", h.key));
+          diag(Severity::Warning, KnitoutCheck::HeaderUnknown, line,
+               fmt::format("unknown header ';;{}:' (ignored)", printable(h.key)));
         }
         prog.headers.push_back(std::move(h));
         continue;
       }
       if (!in_header && colon != std::string_view::npos) {
-        diag(Severity::Warning, KnitoutRule::Header, line,
+        diag(Severity::Warning, KnitoutCheck::HeaderUnknown, line,
              "header-like line after the first operation is only a comment");
       }
     }
@@ -304,7 +287,7 @@ KnitoutFile parse_knitout(std::string_view text) {
     if (in_header) {
       in_header = false;
       if (!have_carriers) {
-        diag(Severity::Error, KnitoutRule::Header, line,
+        diag(Severity::Error, KnitoutCheck::CarriersHeader, line,
              "the required ';;Carriers:' header is missing before the first operation");
       }
     }
@@ -317,21 +300,22 @@ KnitoutFile parse_knitout(std::string_view text) {
     auto carrier_set = [&](size_t from) {
       std::vector<int> cs;
       for (size_t i = from; i < args.size(); ++i) {
-        const auto it = carrier_index.find(args[i]);
+        const auto it = carrier_index.find(std::string(args[i]));
         if (it == carrier_index.end()) {
-          throw LineError{KnitoutRule::UndeclaredCarrier,
-                          fmt::format("carrier '{}' is not named in the ';;Carriers:' header", args[i])};
+          throw LineError{KnitoutCheck::UndeclaredCarrier,
+                          fmt::format("carrier '{}' is not named in the ';;Carriers:' header", printable(args[i]))};
         }
         const int c = it->second;
         if (std::find(cs.begin(), cs.end(), c) != cs.end()) {
-          throw LineError{KnitoutRule::Syntax, fmt::format("carrier '{}' appears twice in the carrier set", args[i])};
+          throw LineError{KnitoutCheck::Malformed,
+                          fmt::format("carrier '{}' appears twice in the carrier set", printable(args[i]))};
         }
         cs.push_back(c);
       }
       return cs;
     };
     auto need = [&](bool ok, const char* usage) {
-      if (!ok) throw LineError{KnitoutRule::Syntax, fmt::format("'{}' takes {}", op, usage)};
+      if (!ok) throw LineError{KnitoutCheck::Malformed, fmt::format("'{}' takes {}", op, usage)};
     };
 
     try {
@@ -388,18 +372,17 @@ KnitoutFile parse_knitout(std::string_view text) {
       } else if (op.size() > 2 && op.substr(0, 2) == "x-") {
         ins.op = KnitoutOp::Extension;
         ins.extension = std::string(op);
-        diag(Severity::Warning, KnitoutRule::Extension, line,
-             fmt::format("extension '{}' is not simulated and is ignored", op));
+        for (auto a : args) ins.args.emplace_back(a);
       } else {
-        throw LineError{KnitoutRule::Syntax, fmt::format("unknown operation '{}'", op)};
+        throw LineError{KnitoutCheck::UnknownOperation, fmt::format("unknown operation '{}'", printable(op))};
       }
       prog.instructions.push_back(std::move(ins));
     } catch (const LineError& e) {
-      diag(Severity::Error, e.rule, line, e.message);
+      diag(Severity::Error, e.check, line, e.message);
     }
   }
   if (in_header && !have_carriers) {
-    diag(Severity::Error, KnitoutRule::Header, lines.empty() ? 1 : static_cast<int>(lines.size()),
+    diag(Severity::Error, KnitoutCheck::CarriersHeader, lines.empty() ? 1 : static_cast<int>(lines.size()),
          "the required ';;Carriers:' header is missing");
   }
   return prog;

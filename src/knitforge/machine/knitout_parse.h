@@ -4,9 +4,13 @@
 /// line `;!knitout-2`) into a list of instructions, with diagnostics that name
 /// the line. See docs/machines.md, "The simulator".
 ///
-/// What is accepted (the spec's syntax, nothing looser):
-///  - line 1 is exactly `;!knitout-2` (a missing or different magic line is an
-///    error; a CR before the LF is accepted with one warning);
+/// What is accepted (the spec's syntax; where the spec tells readers to be
+/// lenient, as the open translators are):
+///  - line 1 is the magic line `;!knitout-N`, N an integer (a missing or
+///    malformed magic line is an error; a version other than 2 is read as
+///    version 2 with a warning: the spec says readers accept any version);
+///  - lines end with LF; CR LF and lone CR line endings are accepted with one
+///    warning;
 ///  - header lines `;;Key: value` before the first operation; `;;Carriers:`
 ///    is required and names the carriers front to back, separated by spaces;
 ///    `;;Position:` must be Left, Center, Right or Keep; `;;Gauge:` a positive
@@ -20,8 +24,9 @@
 ///    non-empty), `knit`/`tuck` (D N CS, CS may be empty: drop / amiss),
 ///    `split` (D N N2 CS), `miss` (D N CS, CS non-empty), `xfer` (N N2),
 ///    `drop` (N), `amiss` (N), `rack` (number, may be fractional), `stitch`
-///    (two numbers), `pause`; `x-...` extensions are kept but flagged with a
-///    warning ("ignored"); anything else is an error.
+///    (two numbers), `pause`; `x-...` extensions are kept with their
+///    arguments (the simulator checks them against the machine); anything
+///    else is an error.
 /// Parsing does not stop at the first error: every malformed line gives one
 /// error and is skipped.
 
@@ -30,44 +35,22 @@
 #include <string_view>
 #include <vector>
 
+#include "knitforge/machine/knitout_rules.h"
+#include "knitforge/util/severity.h"
+
 namespace knitforge {
 
-/// Severity of a diagnostic: an error makes the program invalid; a warning
-/// does not.
-enum class Severity : uint8_t { Warning = 0, Error = 1 };
-
-/// What a diagnostic is about (one entry per rule the parser and the
-/// simulator check; docs/machines.md lists them).
-enum class KnitoutRule : uint8_t {
-  Syntax,              ///< malformed line, unknown operation, bad magic line
-  Header,              ///< missing or malformed header
-  Extension,           ///< x- extension (ignored)
-  UndeclaredCarrier,   ///< carrier not named in ;;Carriers: (or beyond the machine)
-  InactiveCarrier,     ///< carrier used while not in, brought in twice, out while not in
-  CarrierLeftIn,       ///< carrier still in at the end
-  Racking,             ///< racking beyond the machine or an unsupported fraction
-  Misaligned,          ///< transfer/split between needles not aligned at the racking
-  Slider,              ///< knit/tuck on a slider, slider-to-slider move, same-bed move
-  LoopsPerNeedle,      ///< more loops on a needle than the machine holds
-  Float,               ///< carrier floats over more needles than allowed
-  Hook,                ///< yarn-inserting hook misuse
-  Drop,                ///< live fabric dropped (a run), drop of an empty needle
-  EmptyNeedleKnit,     ///< knit on an empty needle outside a cast-on
-  LoopsLeft,           ///< loops left on needles at the end without stated intention
-  Width,               ///< needles beyond the machine's bed width
-};
-inline constexpr int kNumKnitoutRules = 16;
-
-/// Short name of a rule for messages and JSON ("syntax", "hook", ...).
-std::string_view name(KnitoutRule rule);
-
 /// One finding, tied to a line of the knitout file (1-based; 0 = the file as
-/// a whole).
+/// a whole). The parser gives every finding the severity the knitout spec
+/// implies; the simulator re-levels it by the machine profile
+/// (knitout_rules.h).
 struct KnitoutDiagnostic {
   Severity severity = Severity::Error;
   KnitoutRule rule = KnitoutRule::Syntax;
+  KnitoutCheck check = KnitoutCheck::Malformed;
   int line = 0;
   std::string message;
+  int loop = -1;  ///< the knit-graph loop it concerns (simulator findings), -1 when none
 };
 
 enum class KnitoutOp : uint8_t {
@@ -102,6 +85,7 @@ struct KnitoutInstruction {
   double value = 0.0;         ///< rack: racking; stitch: first value
   double value2 = 0.0;        ///< stitch: second value
   std::string extension;      ///< the x- operation's keyword
+  std::vector<std::string> args;  ///< the x- operation's arguments
   std::string comment;        ///< text after ';' (without it), "" when none
 };
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file knitout_simulate.h
 /// A virtual two-bed knitting machine that executes a knitout program,
-/// checks it against a machine profile and rebuilds its knit graph
-/// (docs/machines.md, "The simulator"; knitout spec v0.6).
+/// judges it as the software of a machine profile does and rebuilds its
+/// knit graph (docs/machines.md, "The simulator"; knitout spec v0.6).
 ///
 /// State: per needle (front, back, front and back sliders) the loops it
 /// holds, in the order they arrived; per carrier whether it is in, whether
@@ -11,52 +11,57 @@
 /// needle n + R). Positions along the bed are "slots": front needle n is at
 /// n, back needle n at n + R.
 ///
-/// Rules (each finding is a KnitoutDiagnostic with the line; E = error,
-/// W = warning):
-///  - syntax and headers (from parse_knitout()) [E; x- extensions W];
-///  - carriers: named in ;;Carriers: and among the machine's carriers [E];
-///    used only while in, not brought in twice, taken out only while in and
-///    after stitching, the first operation after `in`/`inhook` uses exactly
-///    the carrier set brought in [E]; carriers still in at the end [E];
-///  - hook (machines with a yarn-inserting hook; on others every hook
-///    operation is an error): no `inhook` while the hook holds a carrier;
-///    `releasehook` names exactly the carriers the hook holds and only after
-///    they stitched; no transfer or split while the hook holds a carrier;
-///    `out` of a carrier the hook still holds, and `outhook` while the hook
-///    holds another carrier, are errors; the hook holding at the end [E]; the
-///    first stitch of a hooked carrier going `+` [W] (carriers enter from the
-///    right on Shima-like machines);
-///  - racking: |R| <= max_racking and a fractional part the machine has
-///    (quarter pitch 0.25 on hook machines, half pitch 0.5 on the Kniterate,
-///    either on others) [E];
+/// Findings. Every check of knitout_rules.h that fails gives a
+/// KnitoutDiagnostic with the line, at the level the profile gives the check
+/// (MachineProfile::checks: Error, Warning, or Off = not reported). An
+/// *error* is what the machine cannot or must not execute; a *warning* says
+/// what the fabric will suffer or which convention is broken. ok() is true
+/// when there is no error, warnings allowed. SimulateOptions::strict turns the
+/// warnings of chosen categories into errors; knitforge's own programs are
+/// judged with every category strict (write_knitout's self-check, the design
+/// commands, `simulate --against`).
+///
+/// What the machine does, as the profile's software reads it:
+///  - carriers: used only while in; `in`/`inhook` marks a carrier for its
+///    next use; the first operation after it must use exactly that set; the
+///    first pass runs away from the profile's carrier_park_side;
+///  - the hook (profiles with one): held from `inhook` until `releasehook`;
+///    on a profile without hook the hook operations are read as `in` /
+///    nothing / `out` (at the level of hook-unavailable);
+///  - racking: |R| <= max_racking; fractions from racking_fractions; on a
+///    profile with quarter_pitch_as_half a fraction .25 is racked at .5, as
+///    the Kniterate translator does (warning quarter-pitch-as-half);
 ///  - transfers and splits: between a front-side and a back-side needle
-///    aligned at the current racking, never slider to slider [E]; knit, tuck,
-///    split and amiss not on sliders [E]; the back bed on a one-bed machine [E];
-///  - loops per needle: more than max_loops_per_needle [E]; more than
-///    max_transfer_stack after a transfer [W];
-///  - floats: a carrier's consecutive stitches (knit/tuck/split) more than
-///    max_float_needles slots apart [E];
-///  - drops: dropping a knit or split loop formed in a fabric section (it
-///    was pulled through loops no needle holds any more, so the wale runs)
-///    [E]; tuck loops, loops knitted on empty needles and loops of cast-on,
-///    bind-off (e.g. the tail of a chain bind-off) and waste sections drop
-///    freely;
-///  - knit on an empty needle outside a cast-on section [W];
+///    aligned at the current racking, never slider to slider; knit, tuck,
+///    split and amiss not on sliders;
+///  - loops per needle: more than max_loops_per_needle, more than
+///    max_transfer_stack after a transfer;
+///  - floats: consecutive stitches of a carrier (knit/tuck/split) more than
+///    max_float_needles slots apart;
+///  - drops: a drop that releases a knit or split loop formed in a fabric
+///    section whose parents no needle holds any more makes the wale run (a
+///    warning: most published test programs end by dropping their last
+///    course); tuck loops and loops of cast-on, bind-off and waste sections
+///    drop freely;
+///  - knit on an empty needle outside a cast-on or waste section;
 ///  - width: the program spans more needles than the bed has, or with
-///    `;;Position: Keep` uses needles outside 1..needle_count [E];
-///  - loops left on needles at the end [E] unless a comment states the
-///    intention: a comment containing `leave-loops` (e.g.
-///    `; leave-loops: live loops on waste yarn, remove by hand`).
+///    `;;Position: Keep` uses needles outside 1..needle_count;
+///  - loops left on needles at the end, unless a comment states the
+///    intention (a comment containing `leave-loops`);
+///  - x- extensions: known to the profile (MachineProfile::extensions) with a
+///    valid value, or unknown (ignored).
 ///
 /// Statistics: carriage passes (consecutive knit/tuck/split/miss operations
 /// in one direction with one carrier set and racking, advancing along the
 /// bed; drops/amisses form passes of their own; transfers at one racking
 /// form transfer passes until a slot repeats or another operation comes),
-/// racks (changes of racking), stitch counts, the knitting time from the
-/// profile's timing model (machine_profile.h), and yarn per carrier: every
-/// knit/tuck/split draws one loop of length 4.2 needle pitches (Munden's
-/// dry-relaxed loop constant with the wale spacing taken as the needle
-/// pitch), plus the float beyond one pitch between consecutive stitches.
+/// racks (changes of racking), stitch counts, transfers per section, the
+/// knitting time from the profile's timing model (machine_profile.h), and
+/// yarn per carrier: every knit/tuck/split draws one loop of length 4.2
+/// needle pitches (Munden's dry-relaxed loop constant with the wale spacing
+/// taken as the needle pitch), plus the float beyond one pitch between
+/// consecutive stitches. Every knit pass is recorded (SimulatedPass) with its
+/// carriers, direction, needles and line range: the per-course statistics.
 
 #include <array>
 #include <string>
@@ -64,16 +69,31 @@
 
 #include "knitforge/machine/knit_graph.h"
 #include "knitforge/machine/knitout_parse.h"
+#include "knitforge/machine/knitout_rules.h"
 #include "knitforge/machine/machine_profile.h"
 
 namespace knitforge {
 
 struct SimulateOptions {
-  /// At most this many diagnostics are kept per rule (counts stay exact);
-  /// <= 0 keeps all.
+  /// At most this many diagnostics are kept per category (counts stay
+  /// exact); <= 0 keeps all.
   int max_diagnostics_per_rule = 100;
   /// Loop length of one stitch in needle pitches, for the yarn estimate.
   double loop_length_pitches = 4.2;
+  /// Warning categories reported as errors (knitout_rules.h).
+  StrictRules strict{};
+};
+
+/// One carriage pass that made stitches (knit/tuck/split/miss).
+struct SimulatedPass {
+  int first_line = 0, last_line = 0;  ///< knitout lines of its first and last operation
+  uint32_t carriers = 0;              ///< carrier set (bit c = carrier index c)
+  int8_t direction = 0;               ///< +1 / -1
+  double rack = 0.0;                  ///< racking during the pass
+  int knits = 0, tucks = 0, splits = 0, misses = 0;
+  double min_slot = 0.0, max_slot = 0.0;  ///< bed positions it spans
+  LoopSection section = LoopSection::Fabric;
+  double time_s = 0.0;                ///< its share of the knitting time
 };
 
 struct SimulationStats {
@@ -82,6 +102,10 @@ struct SimulationStats {
   int transfer_passes = 0;
   int racks = 0;             ///< changes of racking
   int knits = 0, tucks = 0, splits = 0, misses = 0, transfers = 0, drops = 0;
+  /// Transfers (xfer operations) per section (index: LoopSection): shaping
+  /// transfers are those of fabric sections, the rest serve cast-on,
+  /// bind-off and waste.
+  std::array<int, 4> transfers_by_section{};
   int carriers_in = 0, carriers_out = 0;
   int min_needle = 0, max_needle = 0;  ///< range of slots used (0, 0 when none)
   double time_s = 0.0;                 ///< estimated knitting time
@@ -93,6 +117,7 @@ struct KnitoutSimulation {
   std::string machine;                       ///< profile name
   KnitGraph graph;
   SimulationStats stats;
+  std::vector<SimulatedPass> passes;         ///< knit passes in program order (KnitLoop::pass indexes them)
   std::vector<KnitoutDiagnostic> diagnostics;  ///< parse and run findings, by line
   std::array<int, kNumKnitoutRules> error_counts{};
   std::array<int, kNumKnitoutRules> warning_counts{};
@@ -104,8 +129,8 @@ struct KnitoutSimulation {
   std::string text() const;
 };
 
-/// Runs `program` (already parsed; its diagnostics are included) on the
-/// virtual machine of `profile`.
+/// Runs `program` (already parsed; its diagnostics are re-levelled by the
+/// profile and included) on the virtual machine of `profile`.
 /// \throw InvalidInput when the profile is inconsistent (validate_machine_profile).
 KnitoutSimulation simulate_knitout(const KnitoutFile& program, const MachineProfile& profile,
                                    const SimulateOptions& options = {});

@@ -30,9 +30,12 @@
 /// in machine_profile.cpp), good for comparing programs, not for quoting
 /// production times.
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "knitforge/machine/knitout_rules.h"
 
 namespace knitforge {
 
@@ -48,6 +51,60 @@ struct MachineTiming {
 
 /// The kind of a carriage pass, for pass_time_seconds().
 enum class PassKind { Knit, Transfer };
+
+/// A side of the needle bed (where carriers wait before `in` and after `out`).
+enum class BedSide : uint8_t { None, Left, Right };
+
+/// How the machine's software treats one check (knitout_rules.h), and the
+/// public source the level was taken from (a translator's message, the spec,
+/// a simulator, the seed).
+struct CheckRule {
+  CheckLevel level = CheckLevel::Error;
+  std::string source;
+};
+
+/// The values an x- extension takes on a machine's software.
+enum class ExtensionValue : uint8_t {
+  DigitOrLetter,       ///< one character 0-9 or A-Z (Kniterate stitch numbers)
+  NonNegativeInteger,  ///< 0, 1, 2, ...
+  Number,              ///< any number
+  OnOffAuto,           ///< on, off or auto
+  Keyword,             ///< one of `keywords`
+  Anything,            ///< not checked (e.g. x-vis-color)
+  NoValue,             ///< no argument
+};
+
+/// An x- extension the machine's software reads.
+struct ExtensionRule {
+  std::string name;  ///< "x-stitch-number"
+  ExtensionValue value = ExtensionValue::Anything;
+  std::vector<std::string> keywords;  ///< for ExtensionValue::Keyword
+  std::string source;                 ///< where it is documented
+};
+
+/// Machine settings written (as x- extensions) at the start of a section of
+/// a program; "" / -1 = not written (the machine's default applies).
+struct SectionSettings {
+  std::string stitch_number;       ///< x-stitch-number (a stitch-table entry)
+  std::string xfer_stitch_number;  ///< x-xfer-stitch-number
+  int speed_number = -1;           ///< x-speed-number
+  int roller_advance = -1;         ///< x-roller-advance (Kniterate take-down)
+  bool empty() const {
+    return stitch_number.empty() && xfer_stitch_number.empty() && speed_number < 0 && roller_advance < 0;
+  }
+};
+
+/// Operator-ready defaults of the knitout writer for a machine: what a
+/// machine operator expects a program to start and end with.
+struct WriterDefaults {
+  int waste_rows = 0;          ///< courses of waste yarn (+ a draw thread) before the fabric; 0 = none
+  std::string waste_reason;    ///< why the machine needs it (docs, --help)
+  SectionSettings waste;       ///< settings of the waste section
+  SectionSettings cast_on;     ///< settings of the cast-on
+  SectionSettings body;        ///< settings of the fabric courses
+  SectionSettings bind_off;    ///< settings of the bind-off
+  std::string settings_source;  ///< where the setting values come from
+};
 
 /// A knitting machine: limits and conventions of the programs it runs.
 struct MachineProfile {
@@ -70,6 +127,27 @@ struct MachineProfile {
   int max_transfer_stack = 3;
   int max_float_needles = 20;   ///< longest float a carrier may make (needles)
   MachineTiming timing;         ///< data for the knit-time estimate
+  /// Where carriers wait before `in` and return after `out`: a carrier's
+  /// first pass runs away from this side (check first-pass-direction).
+  BedSide carrier_park_side = BedSide::None;
+  /// Fractional rackings (in (0, 1), of R - floor(R)) the machine racks to.
+  std::vector<double> racking_fractions;
+  /// The translator knits quarter-pitch rackings (fraction 0.25) at half
+  /// pitch (+0.25), as the Kniterate's does.
+  bool quarter_pitch_as_half = false;
+  /// The exact `;;Carriers:` value the machine's translator requires ("" = any).
+  std::string required_carriers_header;
+  /// The x- extensions the machine's software reads (others: extension-unknown).
+  std::vector<ExtensionRule> extensions;
+  /// Level and source of every check, indexed by KnitoutCheck.
+  std::array<CheckRule, kNumKnitoutChecks> checks;
+  /// Defaults of the knitout writer.
+  WriterDefaults writer;
+
+  /// The level of `check` on this machine.
+  CheckLevel level(KnitoutCheck check) const { return checks[static_cast<size_t>(check)].level; }
+  /// The extension rule called `name`, or nullptr.
+  const ExtensionRule* extension(std::string_view name) const;
 
   /// Needle pitch in millimetres (25.4 / gauge).
   double needle_pitch_mm() const { return 25.4 / gauge; }
@@ -90,9 +168,13 @@ std::vector<std::string> machine_profile_names();
 /// needle_count, beds in {1, 2}, at least one carrier, unique carrier names
 /// without spaces, max_racking >= 0 (>= 1 for two beds), 1 <= max_transfer_stack
 /// <= max_loops_per_needle, max_float_needles >= 1, positive speeds,
-/// non-negative overheads.
+/// non-negative overheads, racking fractions in (0, 1), waste_rows >= 0.
 /// \throw InvalidInput naming the profile and the offending field.
 void validate_machine_profile(const MachineProfile& profile);
+
+/// The rules of `profile` as a Markdown table: one row per check with its
+/// category, level and source (docs/machines.md is made from this).
+std::string machine_rules_markdown(const MachineProfile& profile);
 
 /// Time of one carriage pass of `kind` spanning `span_needles` needles
 /// (see the timing model in the file comment), in seconds.

@@ -21,15 +21,41 @@
 ///    neighbour is knitted through both (knit two together);
 ///  - everything else keeps its order and closes up to consecutive needles.
 ///
-/// Left/right rule (seed §1.4.2, "choose according to the location of
-/// stitches"): the *pivot* is the continuing wale whose needle is nearest to
-/// needle 0 (the centre of course 0; ties: the lower needle); it does not
-/// move. Wales left of the pivot move left to open needles (increase left)
-/// or right to close gaps (decrease left); wales right of it mirror this. An
-/// ending wale left of the pivot merges onto its nearest continuing
-/// neighbour to the right (towards the pivot), one right of the pivot onto
-/// its left neighbour; when that needle would then hold more than
+/// Where an ending wale goes. The map's stitch mesh says which later
+/// stitches take the loop of a wale's last stitch: those whose bottom edge
+/// touches its top (a Decrease's apex, or the top corner of an edge wale next
+/// to the wale that continues). When such a stitch exists, the loops merge
+/// onto its wale. A wale whose top touches no later stitch (the fabric edge
+/// narrows there: an outside decrease) may merge onto either neighbour; the
+/// left/right rule (seed §1.4.2, "choose according to the location of
+/// stitches") then decides: the *pivot* is the continuing wale whose needle is
+/// nearest to needle 0 (the centre of course 0; ties: the lower needle); it
+/// does not move. Wales left of the pivot move left to open needles
+/// (increase left) or right to close gaps (decrease left); wales right of it
+/// mirror this. A free ending wale left of the pivot merges onto its nearest
+/// continuing neighbour to the right (towards the pivot), one right of the
+/// pivot onto its left neighbour; when that needle would then hold more than
 /// `max_stack` loops the other neighbour is used instead.
+///
+/// Bind-off chains. A wale whose top touches no later stitch (a free top:
+/// the fabric edge narrows by several wales in one course, or a hole opens)
+/// cannot merge onto a neighbour without knitting a fabric the map does not
+/// describe. Runs of such wales are bound off by a chain along their row,
+/// as a knitter casts off stitches at the edge (LayoutChain): right after a
+/// chained stitch of row r is knitted its loop is moved onto the needle of
+/// the next stitch of the row, which is then knitted through both (knit,
+/// pass over); the chain ends on that next stitch (`onto_col`), so no
+/// needle holds more than two loops. In a knittable map such a run never
+/// ends its row (the row's last stitch continues into the next course), so
+/// there always is a next stitch.
+///
+/// Closure tucks are given up where they would overflow a merge: a tuck of
+/// an earlier turn on the ending wale or its target is taken back (that turn
+/// is left open, counted in open_turns).
+///
+/// Problems. A transition that still cannot be made (ending wales whose
+/// targets are all full, a chain that cannot be placed) is recorded in
+/// `problems` with the map cell and the reason; writers refuse such a layout.
 ///
 /// Transfers. Every loop (or stack of loops) whose needle changes is moved by
 /// front -> back at racking 0, then back -> front at racking = displacement.
@@ -51,6 +77,7 @@
 
 #include <climits>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "knitforge/core/knitting_map.h"
@@ -76,6 +103,20 @@ struct LayoutStep {
 struct LayoutMerge {
   int col = -1;
   int onto_col = -1;
+};
+
+/// A run of ending wales with free tops bound off by a chain along row
+/// `row` (see the file comment).
+struct LayoutChain {
+  int row = -1;
+  std::vector<int> cols;  ///< the chained wales, in the row's knitting order
+  int onto_col = -1;      ///< the next stitch of the row, which takes the chain's last loop
+};
+
+/// A transition the machine cannot make.
+struct LayoutProblem {
+  int row = -1, col = -1;  ///< map cell (the ending wale's last row and column)
+  std::string message;     ///< names the cell and what to change
 };
 
 /// The layout change between row r-1 and row r (transitions[0] is empty).
@@ -110,22 +151,26 @@ struct NeedleLayout {
   std::vector<int> closure_col;
   /// Per row: true when the row ends inside the fabric (a short-row turn).
   std::vector<uint8_t> inside_turn;
+  /// Bind-off chains, by row.
+  std::vector<LayoutChain> chains;
+  /// Transitions the machine cannot make (empty when the layout is complete).
+  std::vector<LayoutProblem> problems;
   int open_turns = 0;          ///< inside turns left without closure (loop limit)
   int min_needle = 0;          ///< smallest needle used at any time
   int max_needle = 0;          ///< largest needle used at any time
   int increases = 0;           ///< starting wales (interior and edge)
-  int decreases = 0;           ///< ending wales merged onto a neighbour
+  int decreases = 0;           ///< ending wales merged onto a neighbour or chained
+  int chained = 0;             ///< ending wales bound off by chains
   int loop_moves = 0;          ///< moves over all steps (each is 2 transfers)
 
   int needle_at(int r, int c) const { return needle[static_cast<size_t>(r) * cols + c]; }
   bool alive(int r, int c) const { return needle_at(r, c) != kNoNeedle; }
 };
 
-/// Plans the layout (see the file comment).
+/// Plans the layout (see the file comment). Transitions the machine cannot
+/// make are recorded in NeedleLayout::problems, not thrown.
 /// \throw InvalidInput when the map is not a valid knitting map (as
 ///        map_to_stitch_mesh_topology()), when consecutive rows share no wale,
-///        or when ending wales cannot be merged without stacking more than
-///        max_stack loops on a needle (the message names the row and columns);
 ///        or when an option is out of range.
 NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOptions& options = {});
 

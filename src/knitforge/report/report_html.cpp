@@ -1,4 +1,4 @@
-#include "knitforge/io/report_html.h"
+#include "knitforge/report/report_html.h"
 
 #include <algorithm>
 #include <cctype>

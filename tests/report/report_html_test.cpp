@@ -1,13 +1,13 @@
-// Tests of the report page builder (io/report_html.h): the data object for
+// Tests of the report page builder (report/report_html.h): the data object for
 // hand-made output directories, the page's escaping, the atomic write, and
 // the errors for bad directories and files.
-#include "knitforge/io/report_html.h"
+#include "knitforge/report/report_html.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
 #include "knitforge/io/knitting_map_csv.h"
