@@ -33,6 +33,8 @@
 
 #include <unistd.h>
 
+#include <limits>
+
 namespace knitforge::cli {
 
 namespace {
@@ -163,14 +165,29 @@ CLI::Option* add_max_stitches_option(CLI::App& cmd, double& value) {
 void check_surface_stitches(const TriMesh& surface, const std::string& description, const KnitParams& params,
                             double max_stitches, double bytes_per_stitch) {
   const double area = total_area(surface);
-  const BoundingBox box = bounding_box(surface);
-  const Vec3 size = box.max - box.min;
+  // The extent of the vertices the faces use (an unused stray vertex does not count).
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& t : surface.faces) {
+    for (int v : t) lo = lo.cwiseMin(surface.vertices[v]), hi = hi.cwiseMax(surface.vertices[v]);
+  }
+  const Vec3 size = surface.faces.empty() ? Vec3::Zero() : Vec3(hi - lo);
   const std::string what =
       fmt::format("{} ({:.4g} mm^2, {:.4g} x {:.4g} x {:.4g} mm) at stitch size {} x {} mm", shown(description), area,
                   size.x(), size.y(), size.z(), params.stitch_width, params.stitch_height);
   check_work({what, area / (params.stitch_width * params.stitch_height), "stitches", max_stitches,
               bytes_per_stitch,
               "check the units (--units) and the stitch size (--stitch), or raise the limit with --max-stitches"});
+  // The knitting map spans the surface: its courses and wales are bounded
+  // by the extent over the stitch height and width. A few faces reaching far
+  // out (a stray vertex 70 m away) make a huge, nearly empty map although
+  // the area is small (measured: 5.2 GB and 77 s for the mannequin panel
+  // with one such face); refused here at 20 cells per allowed stitch.
+  const double extent = size.norm();
+  check_work({fmt::format("{} spans {:.4g} mm (diagonal of the faces' bounding box): its knitting map", shown(description),
+                          extent),
+              (extent / params.stitch_height) * (extent / params.stitch_width), "cells", 20.0 * max_stitches, 8.0,
+              "look for stray vertices or faces far from the rest of the surface, check the units (--units), or "
+              "raise the limit with --max-stitches (20 cells per stitch)"});
 }
 
 KnitParams parse_stitch_size(const std::string& text) {

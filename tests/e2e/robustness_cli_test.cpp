@@ -94,6 +94,18 @@ TEST_F(Cli, CostIsEstimatedAndRefusedUpFront) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("limit of 1,000"), std::string::npos) << r.err;
 
+  // One stray face 70 m away: a small area but a huge, nearly empty map
+  // (5.2 GB and 77 s on the mannequin panel before).
+  ASSERT_EQ(run("shape disk -o " + path("disk.obj")).code, 0);
+  {
+    std::ofstream f(path("disk.obj"), std::ios::app);
+    f << "v 70000 0 0\nv 70001 0 0\nv 70000 1 0\nf -3 -2 -1\n";
+  }
+  r = run("shortrow " + path("disk.obj") + " -o " + path("o"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("stray vertices"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("million cells"), std::string::npos) << r.err;
+
   r = run("close hemisphere --alpha 0.01 -o " + path("c.stl"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("billion triangles"), std::string::npos) << r.err;
