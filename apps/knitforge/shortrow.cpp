@@ -1,5 +1,6 @@
 // knitforge shortrow: 3D surface -> short-row stitch mesh and knitting map
 // (seed §3.2), with evaluation and a report.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -50,6 +51,15 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
   return out;
 }
 
+/// An index given as a number of --source: a whole number in [0, 2^31).
+int source_index(double x, const std::string& what) {
+  if (!(x >= 0.0) || x != std::floor(x) || x > 2147483647.0) {
+    throw UsageError(fmt::format("--source {}: {:.17g} is not an index (a whole number from 0 to 2147483647)",
+                                 what, x));
+  }
+  return static_cast<int>(x);
+}
+
 /// --source TEXT (coordinates in the input's units, scaled by `scale`).
 GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
   if (text.empty()) {
@@ -72,11 +82,11 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
       throw InvalidInput(
           "--source boundary:BEGIN,END[,LOOP] takes arc-length fractions in [0, 1] (and a loop index)");
     }
-    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? static_cast<int>(v[2]) : 0);
+    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? source_index(v[2], "boundary loop") : 0);
   }
   if (kind == "boundary-vertices" || kind == "vertex") {
     std::vector<int> ids;
-    for (double x : parse_numbers(args, kind)) ids.push_back(static_cast<int>(x));
+    for (double x : parse_numbers(args, kind)) ids.push_back(source_index(x, kind));
     if (kind == "vertex") {
       if (ids.size() != 1) throw InvalidInput("--source vertex:ID takes one vertex index");
       return source_from_vertex(mesh, ids[0]);

@@ -70,6 +70,11 @@ TEST_F(Cli, OptionValuesAreValidatedAndPrintedReadably) {
   }
   r = run("flatten hemisphere --stitch 3xnan -o " + path("o"));
   EXPECT_EQ(r.code, 2) << r.err;
+  // Indices above 2^31 are printed as given, not as -2147483648.
+  r = run("shortrow hemisphere --source vertex:3000000000 -o " + path("o"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("3000000000 is not an index"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("-2147483648"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, MissingArgumentsExitTwo) {
