@@ -13,6 +13,7 @@
 #include <fstream>
 #include <string>
 
+#include "knitforge/io/mesh_io.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge_fuzz {
@@ -40,6 +41,21 @@ void expect_clean(F&& read) {
     std::fprintf(stderr, "knitforge fuzz: unexpected exception: %s\n", e.what());
     std::abort();
   }
+}
+
+/// The body of the mesh-reader targets: the bytes as a file with `extension`
+/// read by read_mesh(); a mesh that is accepted must have every face index
+/// in range.
+inline int fuzz_mesh_reader(const char* extension, const uint8_t* data, size_t size) {
+  const std::string path = input_path(extension);
+  write_input(path, data, size);
+  expect_clean([&] {
+    const knitforge::TriMesh m = knitforge::read_mesh(path);
+    for (const auto& t : m.faces)
+      for (int v : t)
+        if (v < 0 || v >= m.num_vertices()) std::abort();
+  });
+  return 0;
 }
 
 }  // namespace knitforge_fuzz
