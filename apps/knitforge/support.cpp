@@ -31,7 +31,9 @@ struct Common {
 };
 
 /// The output check of the three commands (before any work).
-void check_common(const Common& c) { check_output_file("-o", c.output, {".stl", ".ply", ".obj", ".off"}, {c.input}); }
+void check_common(const Common& c) {
+  check_output_file("-o", c.output, {".stl", ".ply", ".obj", ".off"}, {c.input});
+}
 
 void add_common(CLI::App& cmd, Common& c, const std::string& output_help) {
   cmd.add_option("input", c.input, "Surface mesh (.obj/.ply/.off/.stl) or a built-in shape: " + shape_list())
@@ -44,7 +46,7 @@ void add_common(CLI::App& cmd, Common& c, const std::string& output_help) {
 
 std::string size_text(const TriMesh& mesh) {
   const Vec3 s = bounding_box(mesh).size();
-  return fmt::format("{} vertices, {} triangles, {:.1f} x {:.1f} x {:.1f} mm, volume {:.0f} mm^3",
+  return fmt::format("{} vertices, {} triangles, {:.5g} x {:.5g} x {:.5g} mm, volume {:.6g} mm^3",
                      mesh.num_vertices(), mesh.num_faces(), s.x(), s.y(), s.z(), enclosed_volume(mesh));
 }
 
@@ -69,17 +71,18 @@ void add_support_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl for printing; .ply/.obj/.off)");
   cmd->add_option("--offset", o->offset, "Inward offset of the surface: the fabric thickness (mm, default 1)")
-      ->check(non_negative_number());
+      ->check(number_in(0, 1e6));
   cmd->add_option("--thickness", o->thickness,
                   "Make a hollow shell of this thickness (mm) instead of a solid with a base")
-      ->check(non_negative_number());
+      ->check(number_in(0, 1e6));
   cmd->add_option("--base-height", o->base_height,
                   "Height of the base below the lowest point of the surface (mm, default 10)")
-      ->check(positive_number());
+      ->check(positive_number())
+      ->check(number_in(0, 1e6));
   cmd->add_option("--base", o->base, "Base: 'projected' (boundary projected down) or 'rectangle' (seed)")
       ->check(CLI::IsMember({"projected", "rectangle"}));
   cmd->add_option("--margin", o->margin, "Margin of the rectangle base around the surface (mm, default 5)")
-      ->check(non_negative_number());
+      ->check(number_in(0, 1e6));
   cmd->callback([=, &action] {
     action = [=]() -> int {
       check_common(*o);
@@ -114,9 +117,9 @@ void add_close_command(CLI::App& app, Action& action) {
   cmd->add_option("--alpha", o->alpha,
                   "Radius of the wrapping ball (mm): gaps narrower than about twice this are bridged "
                   "(default: bounding-box diagonal / 20)")
-      ->check(non_negative_number());
+      ->check(number_in(0, 1e6));
   cmd->add_option("--offset", o->offset, "Distance of the result from the input (mm, default alpha / 30)")
-      ->check(non_negative_number());
+      ->check(number_in(0, 1e6));
   cmd->add_flag(
       "--no-cap", o->no_cap,
       "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
@@ -151,7 +154,10 @@ void add_thicken_command(CLI::App& app, Action& action) {
   };
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl, .ply, .obj, .off)");
-  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")->required()->check(positive_number());
+  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")
+      ->required()
+      ->check(positive_number())
+      ->check(number_in(0, 1e6));
   cmd->add_option("--side", o->side,
                   "Where the material goes: 'both' (centred), 'outside' (along the normals), 'inside'")
       ->check(CLI::IsMember({"both", "outside", "inside"}));

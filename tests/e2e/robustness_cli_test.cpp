@@ -115,6 +115,11 @@ TEST_F(Cli, CostIsEstimatedAndRefusedUpFront) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("billion triangles"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--alpha 0.23"), std::string::npos) << r.err;
+  r = run("support hemisphere --base rectangle --margin 1e12 -o " + path("s.stl"));
+  EXPECT_EQ(r.code, 1);  // was: out of memory
+  EXPECT_NE(r.err.find("smaller base margin"), std::string::npos) << r.err;
+  r = run("thicken hemisphere --thickness 1e300 -o " + path("t.stl"));
+  EXPECT_EQ(r.code, 2);  // was: a 1e300 mm solid with volume nan
   r = run("sample-map random --rows 100000 --cols 100000 -o " + path("r.csv"));
   EXPECT_EQ(r.code, 1);
   EXPECT_FALSE(fs::exists(path("r.csv")));
