@@ -121,6 +121,13 @@ void check_output_file(const std::string& option, const std::string& path,
   }
 }
 
+void check_input_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IOError(fmt::format("{}: is a directory, not a file", shown(path)));
+  if (!fs::exists(path, ec)) throw IOError(fmt::format("{}: no such file; check the path", shown(path)));
+}
+
 void check_output_dir(const std::string& option, const std::string& path, const std::vector<std::string>& inputs) {
   namespace fs = std::filesystem;
   if (path.empty()) throw UsageError(fmt::format("{}: the output directory name is empty", option));

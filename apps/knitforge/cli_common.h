@@ -64,6 +64,10 @@ CLI::Validator number_in(double lo, double hi);
 void check_output_file(const std::string& option, const std::string& path,
                        const std::vector<std::string>& extensions, const std::vector<std::string>& inputs = {});
 
+/// Checks that an input file exists and is a file (not a directory).
+/// \throw IOError naming the path.
+void check_input_file(const std::string& path);
+
 /// Checks an output directory before any work: a non-empty name, an
 /// existing directory or one that can be created (its nearest existing
 /// ancestor is a writable directory), and not one of `inputs`.

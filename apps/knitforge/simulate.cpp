@@ -120,6 +120,8 @@ void add_simulate_command(CLI::App& app, Action& action) {
       SimulateOptions so;
       so.strict = parse_strict_rules(o->strict);
       if (!o->against.empty()) so.strict = all_rules_strict();
+      check_input_file(o->input);
+      if (!o->against.empty()) check_input_file(o->against);
       const KnitoutFile file = read_knitout(o->input);
       const KnitoutSimulation sim = simulate_knitout(file, profile, so);
       bool ok = sim.ok();

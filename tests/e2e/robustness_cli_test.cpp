@@ -131,6 +131,10 @@ TEST_F(Cli, InputMessagesAreOneLineWithoutRawBytes) {
   CliRun r = run("flatten " + path("scan.obj") + " -o " + path("o"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+  fs::create_directories(path("prog.k"));
+  r = run("simulate " + path("prog.k"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
   r = run("check " + path("scan.obj"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
