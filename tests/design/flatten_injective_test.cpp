@@ -8,6 +8,7 @@
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/geometry/arap_flatten.h"
 #include "knitforge/geometry/shapes.h"
+#include "knitforge/geometry/surface_checks.h"
 
 namespace knitforge {
 namespace {
@@ -78,6 +79,44 @@ TEST(FlattenInjective, AutomaticDartsLowerTheMaximumAndNeverFold) {
   // Before: max log sigma 3.6 to 4.9 with folds; a fold-free pattern of this
   // disk stays well below.
   EXPECT_LT(a.flattening.stats.max_abs_log_sigma(), 1.5);
+}
+
+TEST(FlattenInjective, ClosedDartsMeshWeldsTheCopiesOfCutVertices) {
+  const TriMesh m = monkey_saddle(6.0);
+  DartSpec d;
+  d.type = DartType::TwoEnd;
+  d.orientation = DartOrientation::Vertical;
+  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const CutDarts cut = cut_darts(m, {d});
+  ASSERT_EQ(cut.vertex_class.size(), cut.mesh.vertices.size());
+  const TriMesh closed = closed_darts_mesh(cut);
+  EXPECT_EQ(closed.num_faces(), cut.mesh.num_faces());
+  EXPECT_LT(closed.num_vertices(), cut.mesh.num_vertices());  // the slit's copies are one again
+  const SurfaceReport rep = validate_surface(closed);
+  EXPECT_TRUE(rep.is_disk) << rep.summary();  // the slit is closed: a disk again
+  EXPECT_EQ(cut.vertex_class[cut.darts[0].notch_a], cut.vertex_class[cut.darts[0].notch_b]);
+}
+
+TEST(FlattenInjective, TwoEndDartSlitThroughTheFoldFreeSolver) {
+  // Every pattern through the injective solver (limit 0) on a mesh with a
+  // slit (two boundary loops): the slit opens, the notches align (from a
+  // start that does not align them), nothing folds.
+  const TriMesh m = monkey_saddle(6.0);
+  DartSpec d;
+  d.type = DartType::TwoEnd;
+  d.orientation = DartOrientation::Vertical;
+  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  FlattenOptions opt;
+  opt.enforce_dart_angle = false;
+  opt.max_arap_log_sigma = 0.0;
+  const Flattening plain = flatten_surface(m, {}, opt);
+  const Flattening f = flatten_surface(m, {d}, opt);
+  EXPECT_TRUE(f.injective_solver);
+  expect_no_fold(f);
+  ASSERT_EQ(f.darts.size(), 1u);
+  EXPECT_LE(f.darts[0].alignment_error, 1e-6 * 100.0);
+  EXPECT_GT((f.uv[f.darts[0].notch_a] - f.uv[f.darts[0].notch_b]).norm(), 1.0);  // the slit opened
+  EXPECT_LT(f.stats.rms_log_sigma, plain.stats.rms_log_sigma);
 }
 
 }  // namespace
