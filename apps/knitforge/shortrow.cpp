@@ -1,5 +1,6 @@
 // knitforge shortrow: 3D surface -> short-row stitch mesh and knitting map
 // (seed §3.2), with evaluation and a report.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -50,6 +51,15 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
   return out;
 }
 
+/// An index given as a number of --source: a whole number in [0, 2^31).
+int source_index(double x, const std::string& what) {
+  if (!(x >= 0.0) || x != std::floor(x) || x > 2147483647.0) {
+    throw UsageError(fmt::format("--source {}: {:.17g} is not an index (a whole number from 0 to 2147483647)",
+                                 what, x));
+  }
+  return static_cast<int>(x);
+}
+
 /// --source TEXT (coordinates in the input's units, scaled by `scale`).
 GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
   if (text.empty()) {
@@ -72,11 +82,11 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
       throw InvalidInput(
           "--source boundary:BEGIN,END[,LOOP] takes arc-length fractions in [0, 1] (and a loop index)");
     }
-    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? static_cast<int>(v[2]) : 0);
+    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? source_index(v[2], "boundary loop") : 0);
   }
   if (kind == "boundary-vertices" || kind == "vertex") {
     std::vector<int> ids;
-    for (double x : parse_numbers(args, kind)) ids.push_back(static_cast<int>(x));
+    for (double x : parse_numbers(args, kind)) ids.push_back(source_index(x, kind));
     if (kind == "vertex") {
       if (ids.size() != 1) throw InvalidInput("--source vertex:ID takes one vertex index");
       return source_from_vertex(mesh, ids[0]);
@@ -146,6 +156,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     int relax_iterations = -1;
     double bending = -1;
     double field_tolerance = -1;
+    double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
     DesignMachineOptions mach;
   };
@@ -163,26 +174,27 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                   "boundary:BEGIN,END[,LOOP] (arc-length fractions), boundary-vertices:I,J,..., vertex:I, "
                   "polyline:FILE.obj");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--diffusion-length", o->diffusion_length,
                   "Length (mm) the apex distance D is divided by in exp(-D^2) (default: the stitch width)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--lambda", o->lambda, "Initial bridge length limit in mm (default width + 2 x height)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
   cmd->add_option("--relax-iterations", o->relax_iterations,
                   "Shape-Up iterations of the evaluation's relaxation (default 60)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--field-tolerance", o->field_tolerance,
                   "Accuracy of the geodesic field as a fraction of the stitch width (default 1e-3; 0 = exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--bending", o->bending,
                   "Bending stiffness of the evaluation's rest shape, relative to the stitch shape (0 = none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
@@ -192,12 +204,15 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->cut});
       std::string description;
       Timer t;
       TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
+      // ~2.5 kB per stitch measured (5 GB for 2 million at 0.1 x 0.1 mm).
+      check_surface_stitches(surface, description, params, o->max_stitches, 2500.0);
       int cut_edges = 0;
       if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
-      require_disk(surface, description);
+      require_disk(surface, description, "pass --cut FILE.obj with the cut as polylines");
       const double load_seconds = t.seconds();
       const GeodesicSource source = parse_source(surface, o->source, scale);
 
@@ -210,7 +225,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (o->relax_iterations > 0) opt.evaluation.relax.max_iterations = o->relax_iterations;
       if (o->bending >= 0) opt.evaluation.relax.bending = o->bending;
       if (o->field_tolerance >= 0) opt.field_tolerance = o->field_tolerance;
-      opt.progress = [](const std::string& stage) { note(stage + " ..."); };
+      // Progress as the share of the route's stages begun (7, or 8 with the evaluation).
+      const int stages = opt.evaluate ? 8 : 7;
+      auto begun = std::make_shared<int>(0);
+      opt.progress = [stages, begun](const std::string& stage) {
+        note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / stages, stage));
+      };
       const ShortRowDesign d = design_short_rows(surface, source, opt);
 
       // Outputs.
