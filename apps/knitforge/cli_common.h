@@ -18,6 +18,7 @@
 #include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/work_limit.h"
 
 namespace knitforge::cli {
 
@@ -43,6 +44,47 @@ void add_support_command(CLI::App& app, Action& action);
 void add_close_command(CLI::App& app, Action& action);
 void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
+
+/// A usage error found after parsing (a missing, empty or malformed
+/// argument): the program exits 2, like CLI11's own parse errors.
+class UsageError : public InvalidInput {
+ public:
+  using InvalidInput::InvalidInput;
+};
+
+/// Option validators that accept only finite numbers (no nan, inf) and say
+/// what is wrong with the value as given ("--edge 0: must be a positive
+/// number"; never the representable range).
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+CLI::Validator number_in(double lo, double hi);
+
+/// Checks an output file before any work: a non-empty name (UsageError
+/// otherwise) with one of `extensions` (".csv"; empty: any), not a
+/// directory, in an existing writable directory, and not the same file as
+/// any of `inputs`.
+/// \throw UsageError / InvalidInput naming `option` and the path.
+void check_output_file(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& extensions, const std::vector<std::string>& inputs = {});
+
+/// Checks that an input file exists and is a file (not a directory).
+/// \throw IOError naming the path.
+void check_input_file(const std::string& path);
+
+/// Checks an output directory before any work: a non-empty name, an
+/// existing directory or one that can be created (its nearest existing
+/// ancestor is a writable directory), and not one of `inputs`.
+void check_output_dir(const std::string& option, const std::string& path,
+                      const std::vector<std::string>& inputs = {});
+
+/// Adds "--max-stitches N" (default kDefaultMaxStitches) to cmd.
+CLI::Option* add_max_stitches_option(CLI::App& cmd, double& value);
+
+/// Refuses, before any work, a surface whose stitch count area / (w x h)
+/// exceeds max_stitches (check_work(); the message names the surface, its
+/// area and size, and says how to override).
+void check_surface_stitches(const TriMesh& surface, const std::string& description, const KnitParams& params,
+                            double max_stitches, double bytes_per_stitch);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.

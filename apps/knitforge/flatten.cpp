@@ -32,7 +32,7 @@ nlohmann::json distortion_json(const DistortionStats& s) {
   return {{"min_log_sigma", s.min_log_sigma},   {"max_log_sigma", s.max_log_sigma},
           {"mean_log_sigma", s.mean_log_sigma}, {"rms_log_sigma", s.rms_log_sigma},
           {"area_3d_mm2", s.area_3d},           {"area_2d_mm2", s.area_2d},
-          {"flipped_faces", s.flipped_faces}};
+          {"max_abs_log_sigma", s.max_abs_log_sigma()}, {"flipped_faces", s.flipped_faces}};
 }
 
 
@@ -44,8 +44,8 @@ void add_flatten_command(CLI::App& app, Action& action) {
   struct Opts {
     std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts, cut;
     int auto_darts = 0;
-    double edge = kDefaultShapeEdgeLength;
-    bool allow_wide = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+    double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
+    bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
@@ -61,13 +61,17 @@ void add_flatten_command(CLI::App& app, Action& action) {
   add_cut_option(*cmd, o->cut);
   cmd->add_option("--auto-darts", o->auto_darts,
                   "Add up to N darts where the distortion is worst, while it goes down")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
+  cmd->add_flag("--auto-darts-rms-only", o->rms_only,
+                "Keep an automatic dart when it lowers the RMS distortion even if its tip raises the largest "
+                "(domes: by default such a dart is not kept)");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--allow-wide-darts", o->allow_wide,
                 "Accept darts wider than the knittable angle (report them instead of failing)");
   cmd->add_flag("--no-long-rows", o->no_long_rows, "Do not add long rows at the bottom / top of the map");
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   add_design_machine_options(*cmd, o->mach);
@@ -76,10 +80,12 @@ void add_flatten_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->darts, o->cut});
       Timer t;
       std::string description;
       bool builtin = false;
       const TriMesh input = load_design_surface(o->input, o->units, o->edge, description, &builtin);
+      check_surface_stitches(input, description, params, o->max_stitches, 2500.0);
       // A surface that is not a disk is cut into one; its seams prefer the
       // plane x = centre (the symmetry plane of a garment), the longest piece
       // of it between two boundary loops first: on the built-in cap a seam
@@ -101,7 +107,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       fo.stitch_width = params.stitch_width;
       fo.stitch_height = params.stitch_height;
       fo.enforce_dart_angle = !o->allow_wide;
-      note("flattening without darts ...");
+      note("[  0 %] flattening without darts ...");
       t.reset();
       Flattening plain = flatten_surface(surface, {}, fo);
       const double plain_seconds = t.seconds();
@@ -113,9 +119,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
       std::string auto_stop;
       std::vector<DartSpec> all_darts = darts;
       if (!darts.empty() || o->auto_darts > 0) {
-        note(fmt::format("flattening with {} dart(s){} ...", darts.size(),
+        note(fmt::format("[ 25 %] flattening with {} dart(s){} ...", darts.size(),
                          o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
-        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo);
+        DartHintOptions ho;
+        ho.require_lower_maximum = !o->rms_only;
+        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo, ho);
         flat = std::move(a.flattening);
         added = std::move(a.added);
         auto_stop = a.stop_reason;
@@ -123,7 +131,8 @@ void add_flatten_command(CLI::App& app, Action& action) {
         for (size_t k = 0; k < a.rms_sequence.size(); ++k) {
           const size_t n = darts.size() + k;
           if (n == 0) continue;
-          sequence.push_back({{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}});
+          sequence.push_back(
+              {{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}, {"max_abs_log_sigma", a.max_sequence[k]}});
         }
         sequence.back()["distortion"] = distortion_json(flat.stats);
       } else {
@@ -131,13 +140,13 @@ void add_flatten_command(CLI::App& app, Action& action) {
       }
       const double darts_seconds = t.seconds();
 
-      note("rasterising the pattern and checking the map ...");
+      note("[ 50 %] rasterising the pattern and checking the map ...");
       KnitPatternOptions ko;
       ko.raster.long_rows = !o->no_long_rows;
       ko.evaluate = !o->no_evaluate;
       const KnitPatternResult k = knit_flattened_pattern(flat, surface, params, ko);
 
-      note("writing outputs ...");
+      note("[ 90 %] writing outputs ...");
       t.reset();
       const std::filesystem::path dir(o->outdir);
       std::filesystem::create_directories(dir);
@@ -186,6 +195,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                               {"stitch_height_mm", params.stitch_height},
                               {"darts_file", o->darts},
                               {"auto_darts", o->auto_darts},
+                              {"auto_darts_rms_only", o->rms_only},
                               {"allow_wide_darts", o->allow_wide},
                               {"long_rows", !o->no_long_rows},
                               {"arap_tolerance", fo.tolerance},
@@ -196,8 +206,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
                               {"converged", flat.converged},
                               {"relative_energy", flat.relative_energy},
                               {"flipped_faces", flat.flipped_faces},
+                              {"arap_flipped_faces", flat.arap_flipped_faces},
+                              {"injective_solver", flat.injective_solver},
                               {"distortion_before_darts", sequence.front()["distortion"]},
                               {"distortion", distortion_json(flat.stats)},
+                              {"stitch_max_abs_log_sigma", flat.stitch_max_abs_log_sigma},
                               {"distortion_sequence", sequence}};
       nlohmann::json dl = nlohmann::json::array();
       for (size_t i = 0; i < flat.darts.size(); ++i) {
@@ -278,13 +291,21 @@ void add_flatten_command(CLI::App& app, Action& action) {
       write_report_html(o->outdir);
 
       note(fmt::format(
-          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}; map {} rows x {} columns, "
-          "{} stitches; {:.2f} s -> {}",
+          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}, largest |log sigma| {:.4f} (at stitch scale "
+          "{:.4f}){}; map {} rows x {} columns, {} stitches; {:.2f} s -> {}",
           flat.darts.size(), sequence.front()["distortion"]["rms_log_sigma"].get<double>(),
-          flat.stats.rms_log_sigma, r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+          flat.stats.rms_log_sigma, flat.stats.max_abs_log_sigma(), flat.stitch_max_abs_log_sigma,
+          !flat.injective_solver ? std::string()
+          : flat.arap_flipped_faces > 0
+              ? fmt::format(" (fold-free solver: ARAP folded {} face(s))", flat.arap_flipped_faces)
+              : fmt::format(" (fold-free solver: ARAP's largest was {:.4f})", flat.arap_max_abs_log_sigma),
+          r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+      if (o->auto_darts > 0) note("automatic darts: " + auto_stop);
       if (!flat.flipped_faces.empty()) {
-        note(fmt::format("{} face(s) are flipped in the pattern (listed in report.json); more darts may help",
+        // Cannot happen (the flattening is injective by construction); never reported as a success.
+        note(fmt::format("error: {} face(s) are flipped in the pattern (listed in report.json)",
                          flat.flipped_faces.size()));
+        return 1;
       }
       if (k.evaluation) {
         note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
