@@ -105,7 +105,7 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
         }
         ++res.factorizations;
         try {
-          solver.factor(ev.pattern->matrix(vals));
+          solver.refactor(ev.pattern->matrix(vals));
           p = solver.solve(-g);
           break;
         } catch (const SolverError&) {

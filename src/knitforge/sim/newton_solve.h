@@ -4,7 +4,8 @@
 /// equilibrium and every backward-Euler step, docs/sim.md).
 ///
 /// Each iteration evaluates value, gradient and Hessian, solves
-/// (H + μ s I) p = -g with CHOLMOD (geometry/sparse_solver.h; s = the mean
+/// (H + μ s I) p = -g with CHOLMOD (geometry/sparse_solver.h, refactor(): the symbolic
+/// analysis is reused while the pattern stays; s = the mean
 /// diagonal entry, μ >= 0 a Levenberg-Marquardt shift that is 0 whenever the
 /// Hessian factors and the full step is taken, raised tenfold when the
 /// factorisation fails or the step is poor), limits the step to the
