@@ -156,6 +156,18 @@ TEST(Friction, BlockOnInclineSlidesAboveWithCoulombAcceleration) {
   EXPECT_LT(r.displacement_mm, 0.7 * h * h * 9810.0 * std::sin(theta) * steps * (steps + 1) / 2.0);
 }
 
+// Refining the time step: the slide after 0.3 s converges to the continuous
+// Coulomb answer ½ a T² at first order (backward Euler: error ½ a T h).
+TEST(Friction, SlideConvergesAsTheTimeStepIsRefined) {
+  const double tan_theta = 0.8, mu = 0.5, T = 0.3;
+  const double theta = std::atan(tan_theta);
+  const double exact = 0.5 * 9810.0 * (std::sin(theta) - mu * std::cos(theta)) * T * T;
+  const double coarse = std::abs(run_incline(tan_theta, 15, T / 15).displacement_mm - exact);
+  const double fine = std::abs(run_incline(tan_theta, 60, T / 60).displacement_mm - exact);
+  EXPECT_LT(fine, 0.35 * coarse);  // 4 x finer: about 4 x smaller
+  EXPECT_LT(fine, 0.03 * exact);
+}
+
 // A flat sheet dropped on a dome (the upper hemisphere of radius 30 mm):
 // after every step every vertex is at a positive distance from the body and
 // on its outer side; the sheet comes to rest draped over it.
@@ -191,6 +203,46 @@ TEST(Contact, SheetDrapedOnSphereNeverPenetrates) {
   }
   // It really draped: the sheet's corners hang well below the pole.
   EXPECT_LT(lowest, radius - 10.0);
+}
+
+// A moving body: a dome rising at 30 mm/s into a sheet held at its four
+// corners. After every step no vertex is inside the dome or touching it,
+// and the sheet is lifted by it (it really pushed).
+TEST(Contact, RisingDomePushesAPinnedSheetWithoutPenetration) {
+  const int cols = 12;
+  const double s = 3.0;
+  SimModel model = build_sim_model(test::knit_sheet(cols, cols, s, s), square_stitches(s));
+  model.pinned = {0, cols, cols * (cols + 1), (cols + 1) * (cols + 1) - 1};
+  SimWorkspace ws(model);
+  StepOptions o;
+  o.contact.friction = 0.3;
+  o.newton.force_tolerance_mn = 1e-6;
+  Eigen::VectorXd x0 = test::flatten(model.rest_positions);
+  for (int v = 0; v < model.num_vertices(); ++v) x0.segment<3>(3 * v) -= Vec3(0.5 * cols * s, 0.5 * cols * s, 0.0);
+  TriMesh dome_mesh = hemisphere(12.0, 2.0);
+  for (Vec3& p : dome_mesh.vertices) p.z() -= 14.0;  // pole 2 mm below the sheet
+  KinematicBody dome(dome_mesh);
+  SimState st = at_rest(x0);
+  const Vec3 rise(0, 0, 30.0 / 60.0);
+  double highest = -INFINITY;
+  for (int k = 0; k < 30; ++k) {
+    std::vector<Vec3> next = dome.mesh().vertices;
+    for (Vec3& p : next) p += rise;
+    const StepResult r = step_simulation(ws, st, dome, next, {}, o);
+    dome.move_to(next);
+    st = r.state;
+    ASSERT_GT(r.min_distance_mm, 0.0) << "step " << k;
+    for (int v = 0; v < model.num_vertices(); ++v) {
+      const Vec3 p = st.positions_mm.segment<3>(3 * v);
+      const auto q = dome.closest_point_within(p, 1e9);
+      ASSERT_GT(q->distance2, 0.0) << "vertex " << v << " touches the dome at step " << k;
+      ASSERT_GT((p - q->where.point).dot(dome.face_normal(q->face)), -1e-12)
+          << "vertex " << v << " is inside the dome at step " << k;
+      highest = std::max(highest, p.z());
+    }
+  }
+  // The pole ends 13 mm above the sheet's start: the sheet went up with it.
+  EXPECT_GT(highest, 10.0);
 }
 
 }  // namespace
