@@ -1,6 +1,8 @@
 // The flattening never folds (issue: a bumpy disk with --auto-darts 3 gave
 // 13 flipped triangles and max log sigma 3.6, reported as a success).
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -47,6 +49,34 @@ TEST(FlattenInjective, BumpyDiskWhereArapFoldsIsFlattenedWithoutFolds) {
   EXPECT_TRUE(f.injective_solver);     // ... so the fold-free solver made the pattern
   expect_no_fold(f);
   EXPECT_LT(f.stats.max_abs_log_sigma(), 1.0);
+}
+
+TEST(FlattenInjective, ProgressNamesTheSolverAndItsIteration) {
+  // Progress for a long run: ARAP every 20 iterations, then the fold-free
+  // solver's start and every 5th of its iterations; the same pattern as
+  // without a listener.
+  const TriMesh m = bumpy_disk(30.0, 12.0);
+  std::vector<std::string> told;
+  FlattenOptions opt = three_by_two();
+  opt.progress = [&](const std::string& s) { told.push_back(s); };
+  const Flattening f = flatten_surface(m, {}, opt);
+  const Flattening quiet = flatten_surface(m, {}, three_by_two());
+  EXPECT_EQ(f.uv, quiet.uv);
+  ASSERT_TRUE(f.injective_solver);
+  int arap = 0, start = -1;
+  for (size_t i = 0; i < told.size(); ++i) {
+    if (told[i].rfind("ARAP, iteration ", 0) == 0) {
+      ++arap;
+      EXPECT_EQ(start, -1) << told[i];
+    }
+    if (told[i] == "ARAP folded the pattern: the fold-free solver starts") start = static_cast<int>(i);
+    if (told[i].rfind("fold-free solver, iteration ", 0) == 0) {
+      EXPECT_GE(start, 0) << told[i];
+    }
+  }
+  EXPECT_GE(start, 0);
+  EXPECT_EQ(told.front(), "ARAP, iteration 20 of at most 300");
+  EXPECT_GT(arap, 0);
 }
 
 TEST(FlattenInjective, DartWhereArapFoldsKeepsItsAlignmentWithoutFolds) {
