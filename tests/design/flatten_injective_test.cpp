@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "saddle_dart.h"
+
 #include "knitforge/design/flatten/dart_hints.h"
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/geometry/arap_flatten.h"
@@ -113,10 +115,7 @@ TEST(FlattenInjective, AutomaticDartsLowerTheMaximumAndNeverFold) {
 
 TEST(FlattenInjective, ClosedDartsMeshWeldsTheCopiesOfCutVertices) {
   const TriMesh m = monkey_saddle(6.0);
-  DartSpec d;
-  d.type = DartType::TwoEnd;
-  d.orientation = DartOrientation::Vertical;
-  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const DartSpec d = saddle_two_end_dart();
   const CutDarts cut = cut_darts(m, {d});
   ASSERT_EQ(cut.vertex_class.size(), cut.mesh.vertices.size());
   const TriMesh closed = closed_darts_mesh(cut);
@@ -132,10 +131,7 @@ TEST(FlattenInjective, TwoEndDartSlitThroughTheFoldFreeSolver) {
   // slit (two boundary loops): the slit opens, the notches align (from a
   // start that does not align them), nothing folds.
   const TriMesh m = monkey_saddle(6.0);
-  DartSpec d;
-  d.type = DartType::TwoEnd;
-  d.orientation = DartOrientation::Vertical;
-  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const DartSpec d = saddle_two_end_dart();
   FlattenOptions opt;
   opt.enforce_dart_angle = false;
   opt.max_arap_log_sigma = 0.0;
