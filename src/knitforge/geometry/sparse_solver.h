@@ -35,6 +35,20 @@ class SparseSolver {
   ///        indefinite), naming the column where the factorisation stopped.
   void factor(const SparseMatrix& A);
 
+  /// Symbolic analysis only (fill-reducing ordering, elimination tree) of
+  /// the pattern of A (its values are not read), for refactor(): a caller
+  /// that factors many matrices with one sparsity pattern (a Laplacian with
+  /// changing Dirichlet rows kept as explicit zeros) pays the ordering once.
+  /// Drops any previous factor.
+  /// \throw InvalidInput when A is not square or empty.
+  void analyze(const SparseMatrix& pattern);
+  /// Numeric factorisation of A reusing the symbolic analysis of analyze().
+  /// A must have exactly the pattern given to analyze() (same nonzero
+  /// positions, explicit zeros included).
+  /// \throw InvalidInput when analyze() was not called, A has another size
+  ///        or pattern, or non-finite entries; SolverError as factor().
+  void refactor(const SparseMatrix& A);
+
   bool factored() const;
   /// Size of the factored matrix (0 before factor()).
   int rows() const;
