@@ -13,6 +13,7 @@
 #include "knitforge/core/knit_params.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/evaluate/evaluate_stitch_mesh.h"
 #include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/util/errors.h"
@@ -36,6 +37,7 @@ void add_instructions_command(CLI::App& app, Action& action);
 void add_flatten_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_shortrow_command(CLI::App& app, Action& action);
+void add_shortcolumn_command(CLI::App& app, Action& action);
 void add_report_command(CLI::App& app, Action& action);
 void add_support_command(CLI::App& app, Action& action);
 void add_close_command(CLI::App& app, Action& action);
@@ -111,6 +113,18 @@ void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& options);
 nlohmann::json design_machine_end(const DesignMachineOptions& options, const std::string& outdir,
                                   const KnittingMap& map, bool map_knittable, const StitchMesh* designed,
                                   bool& machine_ok, nlohmann::json& machine_check);
+
+/// The stitch mesh as triangles with one colour per stitch (viridis of
+/// `value` over [0, hi]), for viewing (distortion.ply, shape_error.ply).
+void write_coloured_stitches(const std::string& path, const StitchMesh& mesh, const std::vector<double>& value,
+                             double hi);
+
+/// The evaluation outputs of a design command in `dir`: relaxed.ply,
+/// shape_error.ply, distortion.ply; and the "evaluation" section of
+/// report.json.
+void write_evaluation_files(const std::string& dir, const StitchMesh& designed, const StitchMeshEvaluation& ev,
+                            bool ascii);
+nlohmann::json evaluation_json(const StitchMeshEvaluation& ev);
 
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);

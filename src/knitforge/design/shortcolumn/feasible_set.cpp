@@ -86,6 +86,20 @@ BoundaryVector boundary_from_unit(const Eigen::Vector4d& u, double m) {
   return b;
 }
 
+BoundaryVector snap_feasible(const BoundaryVector& b, double m) {
+  const LinearConstraints k = boundary_constraints(m);
+  if (!k.contains(Eigen::Vector4d(b[0], b[1], b[2], b[3]), 1e-9))
+    throw InvalidInput(fmt::format("snap_feasible: b = ({}) is not within 1e-9 of the feasible set (eq. 3.8)",
+                                   format_boundary_vector(b)));
+  BoundaryVector r = b;
+  r[0] = std::clamp(r[0], 0.0, 1.0 - m);
+  r[1] = std::max(r[1], r[0]);
+  r[2] = std::max(r[2], r[1] + m);
+  r[3] = std::max(r[3], r[2]);
+  if (r[3] > 1.0 + r[0] - m && 1.0 + r[0] - m >= r[2]) r[3] = 1.0 + r[0] - m;
+  return r;
+}
+
 BoundaryVector canonical_boundary(const BoundaryVector& b) {
   const double shift = std::floor(b[0]);
   BoundaryVector r;

@@ -66,6 +66,15 @@ BoundaryVector boundary_from_unit(const Eigen::Vector4d& u, double margin = kFea
 /// b of the symmetric variant (values wrapped so that b0 is in [0, 1)).
 BoundaryVector symmetric_boundary(double p, double gap, double a, double e);
 
+/// b moved by rounding-size amounts into eq. 3.8 exactly (is_feasible()):
+/// the projection and the tolerance of LinearConstraints::contains() leave
+/// violations of ~1e-12 (b3 a hair below b2), which dirichlet_sets() would
+/// reject. Each coordinate is clamped in order: b0 to [0, 1 - m], b1 >= b0,
+/// b2 >= b1 + m, b3 >= b2, then b3 <= 1 + b0 - m when that keeps b3 >= b2.
+/// \throw InvalidInput when b is farther than 1e-9 from the set (a caller's
+///        bug, not rounding).
+BoundaryVector snap_feasible(const BoundaryVector& b, double margin = kFeasibleMargin);
+
 /// b wrapped to the canonical range: b0 in [0, 1), the others shifted by the
 /// same integer.
 BoundaryVector canonical_boundary(const BoundaryVector& b);

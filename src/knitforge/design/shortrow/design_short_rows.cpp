@@ -13,28 +13,6 @@
 
 namespace knitforge {
 
-namespace {
-
-/// Drops vertices no stitch uses, keeping the order of the others.
-void remove_unused_vertices(StitchMesh& mesh) {
-  std::vector<int> index(mesh.num_vertices(), -1);
-  for (const Stitch& s : mesh.stitches) {
-    for (int k = 0; k < s.corners(); ++k) index[s.v[k]] = 0;
-  }
-  std::vector<Vec3> kept;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (index[v] < 0) continue;
-    index[v] = static_cast<int>(kept.size());
-    kept.push_back(mesh.vertices[v]);
-  }
-  for (Stitch& s : mesh.stitches) {
-    for (int k = 0; k < s.corners(); ++k) s.v[k] = index[s.v[k]];
-  }
-  mesh.vertices = std::move(kept);
-}
-
-}  // namespace
-
 ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& source,
                                  const ShortRowOptions& options) {
   const Timer total;
