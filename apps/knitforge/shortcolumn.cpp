@@ -374,6 +374,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
       counts["max_lambda_mm"] = d.max_lambda;
       counts["boundary_apex_triangles_to_quads"] = d.boundary_quads.triangles;
       counts["boundary_shaping_to_quads"] = d.boundary_shaping.increases + d.boundary_shaping.decreases;
+      counts["boundary_shaping_split_apexes"] = d.boundary_shaping.split_apexes;
       counts["support_stitches"] = d.courses.support_stitches;
       report["counts"] = counts;
       if (optimisation)

@@ -17,8 +17,11 @@
 /// (A*, A, TR, TL), A* = A + TL - TR, when only its right side has a
 /// neighbour); Decrease (BL, BR, A) -> Knit (BL, BR, A*, A), A* = A + BR - BL
 /// (or (BL, BR, A, A*), A* = A + BL - BR). A triangle with neighbours on both
-/// sides of A (the boundary passes A between other stitches) is left alone
-/// and counted: the knittability check reports it.
+/// sides of A (the boundary passes A between other stitches: a short column
+/// that ends (starts) where the fabric ends above (below) it) gets A split in
+/// two, A - e/4 for the stitches on its left and A + e/4 for those on its
+/// right (e its far edge, left to right), and becomes the quad between them:
+/// a wale that ends (starts) at the fabric's edge.
 
 #include "knitforge/core/stitch_mesh.h"
 
@@ -28,7 +31,7 @@ namespace knitforge {
 struct BoundaryShapingQuadStats {
   int increases = 0;   ///< Increase triangles made quads
   int decreases = 0;   ///< Decrease triangles made quads
-  int left_alone = 0;  ///< boundary-apex shaping triangles with neighbours on both sides
+  int split_apexes = 0;  ///< of those, with neighbours on both sides (apex split)
 };
 
 /// Converts boundary-apex Increase / Decrease triangles to quads, in place.
