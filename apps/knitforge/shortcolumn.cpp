@@ -142,7 +142,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
     double edge = kDefaultShapeEdgeLength, diffusion = -1.0;
     bool optimise = false, symmetric = false, json = false, no_evaluate = false, ascii = false, no_report = false,
          no_compare = false;
-    int budget = 100, alternatives = 3, proxy_faces = 3000;
+    int budget = 100, alternatives = 10, proxy_faces = 3000;
     uint64_t seed = 0;
     DesignMachineOptions mach;
   };
@@ -173,7 +173,8 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
                   "Mirror plane NX,NY,NZ,D of --symmetric (default: x = centre or y = centre, whichever fits)");
   cmd->add_option("--seed", o->seed, "Random seed of the optimisation (default 0)");
   cmd->add_option("--alternatives", o->alternatives,
-                  "Keep the K best distinct boundary vectors (design alternatives, default 3)")
+                  "Keep the K best distinct boundary vectors (design alternatives, default 10); they are designed "
+                  "best first until one is knittable")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--proxy-faces", o->proxy_faces,
                   "Optimise on the surface remeshed to about this many triangles (default 3000; 0 = the surface)")
