@@ -34,6 +34,15 @@ class SparseSolver {
   ///        SolverError when A is not positive definite (singular or
   ///        indefinite), naming the column where the factorisation stopped.
   void factor(const SparseMatrix& A);
+  /// Factors A, whose sparsity pattern is that of the matrix of the last
+  /// successful factor()/refactor() (same size and non-zeros): the symbolic
+  /// analysis (ordering) is reused, only the numeric factor is recomputed.
+  /// Falls back to factor() when there is none or the size or non-zero count
+  /// differs. After analyze(), A must have exactly the analysed pattern
+  /// (same nonzero positions, explicit zeros included); no fallback then.
+  /// \throw as factor(); after analyze(), InvalidInput when A has another
+  ///        size or pattern.
+  void refactor(const SparseMatrix& A);
 
   /// Symbolic analysis only (fill-reducing ordering, elimination tree) of
   /// the pattern of A (its values are not read), for refactor(): a caller
@@ -42,12 +51,6 @@ class SparseSolver {
   /// Drops any previous factor.
   /// \throw InvalidInput when A is not square or empty.
   void analyze(const SparseMatrix& pattern);
-  /// Numeric factorisation of A reusing the symbolic analysis of analyze().
-  /// A must have exactly the pattern given to analyze() (same nonzero
-  /// positions, explicit zeros included).
-  /// \throw InvalidInput when analyze() was not called, A has another size
-  ///        or pattern, or non-finite entries; SolverError as factor().
-  void refactor(const SparseMatrix& A);
 
   bool factored() const;
   /// Size of the factored matrix (0 before factor()).

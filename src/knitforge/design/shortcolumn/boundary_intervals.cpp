@@ -9,6 +9,7 @@
 
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/number_list.h"
 
 namespace knitforge {
 
@@ -77,18 +78,7 @@ std::string format_boundary_vector(const BoundaryVector& b) {
 }
 
 BoundaryVector parse_boundary_vector(const std::string& text) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      size_t used = 0;
-      v.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InvalidInput(fmt::format("--bc '{}': '{}' is not a number", text, item));
-    }
-  }
+  const std::vector<double> v = parse_number_list(text, fmt::format("--bc '{}'", text));
   if (v.size() != 4) {
     throw InvalidInput(fmt::format("--bc '{}': give four numbers b0,b1,b2,b3 (boundary parameters)", text));
   }

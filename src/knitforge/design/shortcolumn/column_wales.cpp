@@ -17,7 +17,7 @@
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/resample_polyline.h"
 #include "knitforge/geometry/split_mesh_along_path.h"
-#include "knitforge/geometry/split_pinched_vertices.h"
+#include "knitforge/geometry/split_nonmanifold_vertices.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
@@ -801,13 +801,21 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       for (int v = 0; v < cur.num_vertices(); ++v)
         if (remap[static_cast<size_t>(v)] >= 0) kept_to_cur[static_cast<size_t>(remap[static_cast<size_t>(v)])] = v;
       {
-        const int before = kept.num_vertices();
-        const std::vector<int> origin = split_pinched_vertices(kept);
-        for (int v = before; v < kept.num_vertices(); ++v) {
-          fk.push_back(fk[static_cast<size_t>(origin[static_cast<size_t>(v)])]);
-          kept_to_cur.push_back(kept_to_cur[static_cast<size_t>(origin[static_cast<size_t>(v)])]);
+        std::vector<int> start{0}, corners;
+        for (const auto& t : kept.faces) {
+          corners.insert(corners.end(), t.begin(), t.end());
+          start.push_back(static_cast<int>(corners.size()));
         }
-        out.pinched_vertices += kept.num_vertices() - before;
+        const VertexFanSplit split = split_nonmanifold_vertices(kept.num_vertices(), start, corners);
+        for (size_t v = kept.vertices.size(); v < split.vertex_origin.size(); ++v) {
+          const size_t o = static_cast<size_t>(split.vertex_origin[v]);
+          kept.vertices.push_back(kept.vertices[o]);
+          fk.push_back(fk[o]);
+          kept_to_cur.push_back(kept_to_cur[o]);
+        }
+        for (size_t f = 0; f < kept.faces.size(); ++f)
+          for (size_t k = 0; k < 3; ++k) kept.faces[f][k] = split.face_vertices[3 * f + k];
+        out.pinched_vertices += split.num_split;
       }
       const Halfedges hk = build_halfedges(kept.num_vertices(), kept.faces);
       std::set<Edge> kept_front;

@@ -109,7 +109,7 @@ struct ColumnWales {
   int dropped_pieces = 0;  ///< front pieces no region continued (e.g. a pinched-off corner)
   int moved_forks = 0;     ///< forks moved off a sample that already was an apex of that type
   int band_growths = 0;    ///< band radius doublings
-  int pinched_vertices = 0; ///< vertices split where the remaining region touched itself (split_pinched_vertices.h)
+  int pinched_vertices = 0; ///< vertices split where the remaining region touched itself (split_nonmanifold_vertices.h)
   int last_strips = 0;          ///< regions closed by a last strip to the surface boundary
   double last_strip_area = 0.0; ///< their area (mm^2), less than a stitch width wide
   double uncovered_area = 0.0;  ///< area of R no strip covers (mm^2): islands, slivers too short for a strip

@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "knitforge/convert/map_knittability.h"
 #include "knitforge/design/shortcolumn/boundary_shaping_quads.h"
-#include "knitforge/convert/stitch_mesh_to_map.h"
+#include "knitforge/design/shortrow/finish_stitch_mesh.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/timer.h"
@@ -53,29 +52,21 @@ ShortColumnDesign design_short_columns(const TriMesh& surface, const std::vector
   stage("post-processing");
   t.reset();
   remove_unused_vertices(d.stitch_mesh);
+  d.split_vertices = split_touching_vertices(d.stitch_mesh);
   d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
   d.boundary_shaping = boundary_shaping_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
-  stage("courses");
-  t.reset();
-  d.courses = order_courses(d.stitch_mesh);
-  d.seconds.courses = t.seconds();
-
-  stage("knitting map");
-  t.reset();
-  try {
-    d.map = stitch_mesh_to_map(d.stitch_mesh);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(
-        fmt::format("short-column design: the stitch mesh cannot be laid out as a knitting map: {}", e.what()));
+  {
+    MapStages m = courses_map_and_checks(d.stitch_mesh, options.params, "short-column design", stage);
+    d.courses = std::move(m.courses);
+    d.map = std::move(m.map);
+    d.mesh_check = std::move(m.mesh_check);
+    d.map_check = std::move(m.map_check);
+    d.seconds.courses = m.seconds_courses;
+    d.seconds.map = m.seconds_map;
+    d.seconds.check = m.seconds_check;
   }
-  d.seconds.map = t.seconds();
-
-  stage("knittability");
-  t.reset();
-  d.mesh_check = check_knittability(d.stitch_mesh);
-  d.map_check = check_knittability(d.map, options.params);
   d.counts = count_short_column_stitches(d.stitch_mesh);
   d.seconds.check = t.seconds();
 

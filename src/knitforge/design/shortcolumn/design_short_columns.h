@@ -76,6 +76,7 @@ struct ShortColumnDesign {
   ShortColumnCounts counts;
   int lambda_growths = 0;
   double max_lambda = 0.0;
+  int split_vertices = 0;     ///< bow-tie vertices split (split_touching_vertices())
   BoundaryApexQuadStats boundary_quads;
   BoundaryShapingQuadStats boundary_shaping;  ///< boundary-apex increases / decreases made quads
   CourseOrder courses;

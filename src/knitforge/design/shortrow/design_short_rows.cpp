@@ -8,6 +8,7 @@
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/geometry/geodesic_distance.h"
 #include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/design/shortrow/finish_stitch_mesh.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/timer.h"
 
@@ -20,17 +21,36 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
     if (options.progress) options.progress(name);
   };
   ShortRowDesign d;
-  d.surface_area = total_area(surface);
   Timer t;
 
+  stage("seams");
+  {
+    CutToDiskOptions co;
+    co.source = source;
+    co.cuts = options.cuts;
+    co.seams_on_source = options.seams_on_source;
+    co.longest_source_seam = true;
+    CutToDisk opened = cut_to_disk(surface, co, options.surface_name);
+    d.surface = std::move(opened.mesh);
+    d.source = std::move(opened.source);
+    d.seams = std::move(opened.seams);
+    d.input_boundary_loops = opened.input_boundary_loops;
+    d.input_genus = opened.input_genus;
+    d.source_on_seam = opened.source_on_seam;
+    d.source_seam_candidates = opened.source_seam_candidates;
+  }
+  d.surface_area = total_area(d.surface);
+  d.seconds.seams = t.seconds();
+
   stage("geodesic field");
+  t.reset();
   if (!(std::isfinite(options.field_tolerance) && options.field_tolerance >= 0)) {
     throw InvalidInput(fmt::format("short-row design: field tolerance {} must be finite and >= 0",
                                    options.field_tolerance));
   }
   GeodesicOptions field_options;
   field_options.tolerance = options.field_tolerance * options.params.stitch_width;
-  const GeodesicField field = geodesic_distance(surface, source, field_options);
+  const GeodesicField field = geodesic_distance(d.surface, d.source, field_options);
   d.field = field.distance;
   d.field_signed = field.is_signed;
   d.field_windows = field.num_windows;
@@ -39,7 +59,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
 
   stage("wale curves");
   t.reset();
-  d.wales = compute_wale_curves(surface, d.field, options.params, options.wales);
+  d.wales = compute_wale_curves(d.surface, d.field, options.params, options.wales);
   d.seconds.wales = t.seconds();
 
   stage("tessellation");
@@ -56,35 +76,26 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   stage("post-processing");
   t.reset();
   remove_unused_vertices(d.stitch_mesh);
+  d.split_vertices = split_touching_vertices(d.stitch_mesh);
   d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
-  stage("courses");
-  t.reset();
-  d.courses = order_courses(d.stitch_mesh);
-  d.seconds.courses = t.seconds();
-
-  stage("knitting map");
-  t.reset();
-  try {
-    d.map = stitch_mesh_to_map(d.stitch_mesh);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(
-        fmt::format("short-row design: the stitch mesh cannot be laid out as a knitting map: {}", e.what()));
+  {
+    MapStages m = courses_map_and_checks(d.stitch_mesh, options.params, "short-row design", stage);
+    d.courses = std::move(m.courses);
+    d.map = std::move(m.map);
+    d.mesh_check = std::move(m.mesh_check);
+    d.map_check = std::move(m.map_check);
+    d.seconds.courses = m.seconds_courses;
+    d.seconds.map = m.seconds_map;
+    d.seconds.check = m.seconds_check;
   }
-  d.seconds.map = t.seconds();
-
-  stage("knittability");
-  t.reset();
-  d.mesh_check = check_knittability(d.stitch_mesh);
-  d.map_check = check_knittability(d.map, options.params);
-  d.seconds.check = t.seconds();
   d.apex_spacing = apex_spacing(d.stitch_mesh);
 
   if (options.evaluate) {
     stage("evaluation");
     t.reset();
-    d.evaluation = evaluate_stitch_mesh(d.stitch_mesh, surface, options.params, options.evaluation);
+    d.evaluation = evaluate_stitch_mesh(d.stitch_mesh, d.surface, options.params, options.evaluation);
     d.seconds.evaluation = t.seconds();
   }
   d.seconds.total = total.seconds();
