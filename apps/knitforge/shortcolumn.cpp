@@ -279,7 +279,16 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
       } else {
         HarmonicFieldSolver solver(surface);
         for (size_t k = 0; k < candidates.size(); ++k) {
-          const HarmonicField h = solver.solve(candidates[k]);
+          HarmonicField h;
+          try {
+            h = solver.solve(candidates[k]);
+          } catch (const TopologyError& e) {
+            if (k + 1 == candidates.size() && !design) throw;
+            note(fmt::format("b = ({}): {}; trying the next alternative", format_boundary_vector(candidates[k]),
+                             e.what()));
+            tried.push_back({{"b", bvec(candidates[k])}, {"error", e.what()}});
+            continue;
+          }
           if (candidates.size() > 1) note(fmt::format("design with b = ({}) ...", format_boundary_vector(candidates[k])));
           ShortColumnDesign d = design_short_columns(surface, h.value, sopt);
           tried.push_back({{"b", bvec(candidates[k])},
@@ -397,6 +406,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
                                   {"best_estimated_transfers", optimisation->best_value},
                                   {"evaluations", static_cast<int>(optimisation->history.size())},
                                   {"trust_regions", optimisation->regions},
+                                  {"unplaceable_evaluations", optimisation->unplaceable},
                                   {"symmetric", optimisation->symmetric},
                                   {"proxy_faces", optimisation->proxy_faces},
                                   {"seed", o->seed},

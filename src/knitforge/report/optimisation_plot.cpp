@@ -109,6 +109,7 @@ nlohmann::json optimisation_json(const BoundaryOptimisation& opt) {
                       {"evaluations", ev},
                       {"alternatives", alt},
                       {"trust_regions", opt.regions},
+                      {"unplaceable_evaluations", opt.unplaceable},
                       {"symmetric", opt.symmetric},
                       {"proxy", {{"faces", opt.proxy_faces}, {"vertices", opt.proxy_vertices}, {"edge_length_mm", opt.proxy_edge_length}}},
                       {"seconds", {{"total", opt.seconds}, {"proxy", opt.seconds_proxy}, {"evaluations", opt.seconds_evaluations}}}};

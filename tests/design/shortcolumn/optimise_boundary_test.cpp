@@ -9,6 +9,9 @@
 #include "knitforge/design/shortcolumn/divergence_metric.h"
 #include "knitforge/design/shortcolumn/feasible_set.h"
 #include "knitforge/design/shortcolumn/harmonic_field.h"
+#include "knitforge/geometry/cut_to_disk.h"
+#include "knitforge/geometry/geodesic_source.h"
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/util/errors.h"
 
@@ -61,6 +64,33 @@ TEST(OptimiseBoundary, HemisphereBeatsTheInitialDesignAndIsDeterministic) {
   o.progress = nullptr;
   const BoundaryOptimisation again = optimise_boundary(surface, o);
   EXPECT_EQ(again.best, r.best);
+}
+
+}  // namespace
+}  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+TEST(OptimiseBoundary, BoundaryVectorsTheProxyCannotPlaceScoreAsTheWorst) {
+  // The built-in cap cut into a disk (as `knitforge shortcolumn cap` does):
+  // on its 3000-face proxy some suggestions squeeze R_e next to R_s between
+  // two boundary vertices (b2 = b1 + margin, where the projection puts
+  // them); they have no field and must not stop the optimisation.
+  const TriMesh cap = make_shape("cap");
+  const BoundingBox box = bounding_box(cap);
+  CutToDiskOptions co;
+  co.source = source_from_plane(cap, Vec3(1, 0, 0), 0.5 * (box.min.x() + box.max.x()));
+  const TriMesh surface = cut_to_disk(cap, co).mesh;
+  BoundaryOptimisationOptions o;
+  o.turbo.max_evaluations = 100;
+  const BoundaryOptimisation r = optimise_boundary(surface, o);
+  ASSERT_EQ(r.history.size(), 100u);
+  EXPECT_GT(r.unplaceable, 0);
+  double worst = 0.0;
+  for (const BoundaryEvaluation& e : r.history) worst = std::max(worst, e.value);
+  EXPECT_LT(r.best_value, worst);
+  EXPECT_NO_THROW(harmonic_field(surface, r.best)) << "the best b has a field on the surface too";
 }
 
 }  // namespace

@@ -159,8 +159,22 @@ BoundaryOptimisation optimise_boundary(const TriMesh& surface, const BoundaryOpt
   if (!to_feasible_b) to_feasible_b = to_b;
   std::vector<double> metric_of;  // per evaluation, in order
   pr.objective = [&](const Eigen::VectorXd& x) {
-    const HarmonicField h = solver.solve(to_feasible_b(x));
-    const double m = div.total(h.value);
+    // A b the proxy's boundary cannot place (R_e squeezed next to R_s
+    // between two boundary vertices) scores as the worst b so far: it is
+    // feasible in eq. 3.8 but has no field on this mesh.
+    double m = 0.0;
+    bool placed = true;
+    try {
+      m = div.total(solver.solve(to_feasible_b(x)).value);
+    } catch (const TopologyError&) {
+      placed = false;
+    }
+    if (!placed) {
+      ++r.unplaceable;
+      m = 0.0;
+      for (double v : metric_of) m = std::max(m, v);
+      if (metric_of.empty()) m = 1e3 * o.stitch_width;  // no evaluation yet: 1500 estimated transfers
+    }
     metric_of.push_back(m);
     return scale * m;
   };

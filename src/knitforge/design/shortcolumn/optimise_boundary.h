@@ -75,6 +75,9 @@ struct BoundaryOptimisation {
   std::vector<BoundaryEvaluation> history;
   std::vector<int> alternatives;  ///< indices into history, best first (alternatives[0] = best)
   int regions = 0;
+  /// Evaluations whose b the proxy's boundary could not place
+  /// (dirichlet_sets() found no vertices for R_e); scored as the worst so far.
+  int unplaceable = 0;
   bool symmetric = false;
   MirrorPlane mirror;             ///< when symmetric
   double mirror_error = 0.0;      ///< mean distance of the mirrored boundary to the boundary (mm)
