@@ -465,6 +465,12 @@ int machine_exit_code(bool machine_ok, const std::string& machine) {
   return 0;
 }
 
+std::string shape_name_list() {
+  std::string names;
+  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
 void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }
 
 void write_coloured_stitches(const std::string& path, const StitchMesh& mesh, const std::vector<double>& value,

@@ -119,6 +119,9 @@ bool is_stitch_mesh_ply(const std::string& path);
 /// \throw IOError when it cannot be read.
 std::string read_text_file(const std::string& path, const std::string& what = "file");
 
+/// The built-in shape names, comma-separated (for help texts).
+std::string shape_name_list();
+
 /// Reads a triangle mesh and scales it to millimetres.
 TriMesh load_surface(const std::string& path, const std::string& units);
 

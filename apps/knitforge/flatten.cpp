@@ -49,8 +49,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   cmd->add_option("input", o->input,
                   "Surface mesh (.obj/.ply/.off/.stl), a disk, or a built-in shape: " + names)
       ->required();

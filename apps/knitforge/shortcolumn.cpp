@@ -139,8 +139,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   cmd->add_option("input", o->input, "Surface mesh (.obj/.ply/.off/.stl) of one piece (cut into a disk when it is not one), or a built-in shape: " + names)
       ->required();
   cmd->add_option("-o,--output", o->outdir, "Output directory")->required();

@@ -57,18 +57,8 @@ ShortColumnDesign design_short_columns(const TriMesh& surface, const std::vector
   d.boundary_shaping = boundary_shaping_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
-  {
-    MapStages m = courses_map_and_checks(d.stitch_mesh, options.params, "short-column design", stage);
-    d.courses = std::move(m.courses);
-    d.map = std::move(m.map);
-    d.mesh_check = std::move(m.mesh_check);
-    d.map_check = std::move(m.map_check);
-    d.seconds.courses = m.seconds_courses;
-    d.seconds.map = m.seconds_map;
-    d.seconds.check = m.seconds_check;
-  }
+  map_stages_into(d, options.params, "short-column design", stage);
   d.counts = count_short_column_stitches(d.stitch_mesh);
-  d.seconds.check = t.seconds();
 
   if (options.evaluate) {
     stage("evaluation");

@@ -80,16 +80,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
-  {
-    MapStages m = courses_map_and_checks(d.stitch_mesh, options.params, "short-row design", stage);
-    d.courses = std::move(m.courses);
-    d.map = std::move(m.map);
-    d.mesh_check = std::move(m.mesh_check);
-    d.map_check = std::move(m.map_check);
-    d.seconds.courses = m.seconds_courses;
-    d.seconds.map = m.seconds_map;
-    d.seconds.check = m.seconds_check;
-  }
+  map_stages_into(d, options.params, "short-row design", stage);
   d.apex_spacing = apex_spacing(d.stitch_mesh);
 
   if (options.evaluate) {

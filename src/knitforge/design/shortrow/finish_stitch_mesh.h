@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 
 #include "knitforge/core/knit_params.h"
 #include "knitforge/core/knittability.h"
@@ -37,5 +38,21 @@ struct MapStages {
 ///        knitting map: ..." when stitch_mesh_to_map() refuses it.
 MapStages courses_map_and_checks(StitchMesh& mesh, const KnitParams& params, const std::string& route,
                                  const std::function<void(const std::string&)>& stage);
+
+/// courses_map_and_checks() on d.stitch_mesh, its results stored in a route's
+/// design d (members courses, map, mesh_check, map_check, seconds.courses,
+/// seconds.map, seconds.check: ShortRowDesign, ShortColumnDesign).
+template <class Design>
+void map_stages_into(Design& d, const KnitParams& params, const std::string& route,
+                     const std::function<void(const std::string&)>& stage) {
+  MapStages m = courses_map_and_checks(d.stitch_mesh, params, route, stage);
+  d.courses = std::move(m.courses);
+  d.map = std::move(m.map);
+  d.mesh_check = std::move(m.mesh_check);
+  d.map_check = std::move(m.map_check);
+  d.seconds.courses = m.seconds_courses;
+  d.seconds.map = m.seconds_map;
+  d.seconds.check = m.seconds_check;
+}
 
 }  // namespace knitforge
