@@ -113,3 +113,20 @@ TEST_F(Cli, ShortColumnGivenBoundaryVectorAndBadInputs) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("no_such_surface.obj"), std::string::npos) << r.err;
 }
+
+TEST_F(Cli, ShortColumnBuiltInShapesAreKnittableAndTheirProgramsMatch) {
+  // The other built-in inputs with the default options (budget 100,
+  // 10 alternatives): the cap is cut into a disk first.
+  for (const char* shape : {"triple-peak", "monkey-saddle", "cap"}) {
+    SCOPED_TRACE(shape);
+    const std::string out = path(shape);
+    const CliRun r = run(std::string("shortcolumn ") + shape + " --no-evaluate --no-compare --no-report -o " + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+    EXPECT_TRUE(report["knittable"].get<bool>());
+    EXPECT_EQ(report["machine"]["verdict"], "VALID");
+    EXPECT_TRUE(report["machine"]["matches_map"].get<bool>());
+    EXPECT_GT(report["counts"]["transfer_stitches"].get<int>(), 0) << "these surfaces get short columns";
+    EXPECT_EQ(report["machine"]["shaping"]["transfer_stitches"], report["counts"]["transfer_stitches"]);
+  }
+}
