@@ -342,6 +342,7 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
       step *= 0.5;
     }
     ++out.iterations;
+    if (options.on_iteration) options.on_iteration(out.iterations);
     if (!feasible && !(step > 1e-12)) break;  // the constraints cannot be approached without a fold
     if (!std::isfinite(e_next) || (feasible && e_next > energy)) {
       out.converged = true;  // no descent left at this resolution
