@@ -41,6 +41,7 @@ void add_support_command(CLI::App& app, Action& action);
 void add_close_command(CLI::App& app, Action& action);
 void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
+void add_body_command(CLI::App& app, Action& action);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.

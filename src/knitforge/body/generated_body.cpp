@@ -372,11 +372,50 @@ enum Param : int {
 // Shape parameter k is measurement k (same order as body_measurements.h).
 static_assert(kNumParams == kNumMeasurements);
 
+double torso_sigma(double z, const std::array<double, kNumParams>& s) {
+  const double hip = 1.0 - smoothstep(900.0, 1080.0, z);
+  const double waist = smoothstep(900.0, 1080.0, z) * (1.0 - smoothstep(1080.0, 1270.0, z));
+  const double chest = smoothstep(1080.0, 1270.0, z) * (1.0 - smoothstep(1380.0, 1480.0, z));
+  return s[pHip] * hip + s[pWaist] * waist + s[pChest] * chest;
+}
+
+// How much of the torso girth scaling a rest point takes: 1 on the torso,
+// fading out into the arms (at arm height, beyond the shoulders) and down
+// the thighs. A field of the rest position, not of the skinning weights, so
+// that the girths bend the surface smoothly across the bones' regions.
+double torso_membership(const Vec3& x) {
+  const double arm_height = smoothstep(1220.0, 1400.0, x.z());
+  const double lateral = 1.0 - arm_height * smoothstep(120.0, 260.0, std::abs(x.x()));
+  return lateral * smoothstep(700.0, 830.0, x.z());
+}
+
+// The torso girth displacement of a rest point: its section scaled about
+// the body's vertical axis, as much as the point belongs to the torso.
+Vec3 torso_displacement(const Vec3& x, const std::array<double, kNumParams>& s) {
+  return torso_sigma(x.z(), s) * torso_membership(x) * Vec3(x.x(), x.y(), 0.0);
+}
+
+// Where the limbs sit on the torso (collars: the arms, hips: the legs): they
+// move with the torso's girth there, and their subtrees with them.
+std::array<Vec3, kNumJoints> girth_shifts(const Skeleton& sk, const std::array<double, kNumParams>& s) {
+  std::array<Vec3, kNumJoints> shift{};
+  for (int j = 0; j < kNumJoints; ++j) {
+    const int p = kParents[static_cast<size_t>(j)];
+    shift[static_cast<size_t>(j)] = p < 0 ? Vec3::Zero() : shift[static_cast<size_t>(p)];
+    if (j == kLCollar || j == kRCollar || j == kLHip || j == kRHip)
+      shift[static_cast<size_t>(j)] = torso_displacement(sk.joint[static_cast<size_t>(j)], s);
+  }
+  return shift;
+}
+
 // Rest joints for internal parameters s (linear in s).
 std::array<Vec3, kNumJoints> rig_joints(const Skeleton& sk, const std::array<double, kNumParams>& s) {
   std::array<double, kNumJoints> scale{};
   scale.fill(1.0);
-  for (int j : {kSpine1, kSpine2, kNeck, kHead, kLCollar, kRCollar}) scale[static_cast<size_t>(j)] += s[pStature];
+  // The stature stretches the torso, neck and head vertically (the collars'
+  // height too, not their width).
+  std::array<bool, kNumJoints> vertical{};
+  for (int j : {kSpine1, kSpine2, kNeck, kHead, kLCollar, kRCollar}) vertical[static_cast<size_t>(j)] = true;
   for (int j : {kLKnee, kLAnkle, kRKnee, kRAnkle}) scale[static_cast<size_t>(j)] += s[pLeg];
   for (int j : {kLElbow, kLWrist, kRElbow, kRWrist}) scale[static_cast<size_t>(j)] += s[pArm];
   for (int j : {kLShoulder, kRShoulder}) scale[static_cast<size_t>(j)] += s[pShoulder];
@@ -385,9 +424,12 @@ std::array<Vec3, kNumJoints> rig_joints(const Skeleton& sk, const std::array<dou
   J[kPelvis] = sk.joint[kPelvis] + Vec3(0, 0, s[pLeg] * leg_height);
   for (int j = 1; j < kNumJoints; ++j) {
     const int p = kParents[static_cast<size_t>(j)];
-    J[static_cast<size_t>(j)] = J[static_cast<size_t>(p)] +
-                                scale[static_cast<size_t>(j)] * (sk.joint[static_cast<size_t>(j)] - sk.joint[static_cast<size_t>(p)]);
+    Vec3 offset = scale[static_cast<size_t>(j)] * (sk.joint[static_cast<size_t>(j)] - sk.joint[static_cast<size_t>(p)]);
+    if (vertical[static_cast<size_t>(j)]) offset.z() *= 1.0 + s[pStature];
+    J[static_cast<size_t>(j)] = J[static_cast<size_t>(p)] + offset;
   }
+  const auto shift = girth_shifts(sk, s);
+  for (int j = 0; j < kNumJoints; ++j) J[static_cast<size_t>(j)] += shift[static_cast<size_t>(j)];
   return J;
 }
 
@@ -406,27 +448,22 @@ double limb_sigma(int j, double t, const std::array<double, kNumParams>& s) {
   }
 }
 
-double torso_sigma(double z, const std::array<double, kNumParams>& s) {
-  const double hip = 1.0 - smoothstep(900.0, 1080.0, z);
-  const double waist = smoothstep(900.0, 1080.0, z) * (1.0 - smoothstep(1080.0, 1270.0, z));
-  const double chest = smoothstep(1080.0, 1270.0, z) * (1.0 - smoothstep(1380.0, 1480.0, z));
-  return s[pHip] * hip + s[pWaist] * waist + s[pChest] * chest;
-}
 
 bool is_torso_joint(int j) { return j == kPelvis || j == kSpine1 || j == kSpine2; }
 
-// Where joint j's map sends rest point x for internal parameters s.
-Vec3 joint_map(int j, const Vec3& x, const Skeleton& sk, const std::array<Vec3, kNumJoints>& J,
-               const std::array<double, kNumParams>& s) {
-  if (is_torso_joint(j)) {
-    // Vertical: piecewise linear through the spine chain; horizontal: the
-    // sections scaled about the torso axis.
+
+// The torso's vertical map: piecewise linear through the spine chain, the
+// last segment's stretch continued above the neck joint (as the neck bone's
+// is: no kink where the two regions' weights meet), a translation below the
+// pelvis.
+double torso_z(const Vec3& x, const Skeleton& sk, const std::array<Vec3, kNumJoints>& J) {
     const int chain[4] = {kPelvis, kSpine1, kSpine2, kNeck};
     double z;
     if (x.z() <= sk.joint[kPelvis].z()) {
       z = x.z() + J[kPelvis].z() - sk.joint[kPelvis].z();
     } else if (x.z() >= sk.joint[kNeck].z()) {
-      z = x.z() + J[kNeck].z() - sk.joint[kNeck].z();
+      const double ratio = (J[kNeck].z() - J[kSpine2].z()) / (sk.joint[kNeck].z() - sk.joint[kSpine2].z());
+      z = J[kNeck].z() + ratio * (x.z() - sk.joint[kNeck].z());
     } else {
       int k = 0;
       while (x.z() > sk.joint[static_cast<size_t>(chain[k + 1])].z()) ++k;
@@ -434,8 +471,15 @@ Vec3 joint_map(int j, const Vec3& x, const Skeleton& sk, const std::array<Vec3, 
       const double t = (x.z() - z0) / (z1 - z0);
       z = J[static_cast<size_t>(chain[k])].z() + t * (J[static_cast<size_t>(chain[k + 1])].z() - J[static_cast<size_t>(chain[k])].z());
     }
-    const double g = 1.0 + torso_sigma(x.z(), s);
-    return {g * x.x(), g * x.y(), z};
+  return z;
+}
+
+// Where joint j's map sends rest point x for internal parameters s.
+Vec3 joint_map(int j, const Vec3& x, const Skeleton& sk, const std::array<Vec3, kNumJoints>& J,
+               const std::array<double, kNumParams>& s) {
+  if (is_torso_joint(j)) {
+    // The girths are torso_displacement(), added in rig_vertices().
+    return {x.x(), x.y(), torso_z(x, sk, J)};
   }
   const Vec3 a0 = sk.joint[static_cast<size_t>(j)], b0 = sk.bone_end[static_cast<size_t>(j)];
   const Vec3 u = b0 - a0;
@@ -447,16 +491,28 @@ Vec3 joint_map(int j, const Vec3& x, const Skeleton& sk, const std::array<Vec3, 
   for (int c = 0; c < kNumJoints; ++c) {
     if (kParents[static_cast<size_t>(c)] == j && (sk.joint[static_cast<size_t>(c)] - b0).norm() < 1e-9) b = J[static_cast<size_t>(c)];
   }
-  return a + t * (b - a) + (1.0 + limb_sigma(j, t, s)) * r;
+  Vec3 y = a + t * (b - a) + (1.0 + limb_sigma(j, t, s)) * r;
+  // The collars sit in the torso: vertically they follow its map, so that
+  // the stature stretches the shoulders' tops like the rest of the torso.
+  if (j == kLCollar || j == kRCollar) y.z() += torso_z(x, sk, J) - x.z() - (a.z() - a0.z());
+  return y;
 }
 
 std::vector<Vec3> rig_vertices(const std::vector<Vec3>& rest, const RowSparse& weights, const Skeleton& sk,
                                const std::array<double, kNumParams>& s) {
   const auto J = rig_joints(sk, s);
+  const auto shift = girth_shifts(sk, s);
   std::vector<Vec3> out(rest.size(), Vec3::Zero());
   for (int i = 0; i < static_cast<int>(rest.size()); ++i) {
-    for (RowSparse::InnerIterator it(weights, i); it; ++it)
-      out[static_cast<size_t>(i)] += it.value() * joint_map(static_cast<int>(it.col()), rest[static_cast<size_t>(i)], sk, J, s);
+    const Vec3& x = rest[static_cast<size_t>(i)];
+    Vec3 carried = Vec3::Zero();  // the limbs' girth shifts the joint maps apply
+    for (RowSparse::InnerIterator it(weights, i); it; ++it) {
+      out[static_cast<size_t>(i)] += it.value() * joint_map(static_cast<int>(it.col()), x, sk, J, s);
+      carried += it.value() * shift[static_cast<size_t>(it.col())];
+    }
+    // On the torso the torso's displacement replaces the limbs' shifts,
+    // blended by the membership (1 on the torso, 0 out on the limbs).
+    out[static_cast<size_t>(i)] += torso_displacement(x, s) - torso_membership(x) * carried;
   }
   return out;
 }

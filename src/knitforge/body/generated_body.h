@@ -19,20 +19,24 @@
 ///     Voronoi areas, H_i = 1 / d_i² (d_i the distance to the nearest bone
 ///     of the vertex's limb) and p_j the indicator of that nearest bone;
 ///     then at most 4 joints per vertex, renormalised.
-///  4. Shape parameters = body measurements (body_measurements.h): each
-///     moves joints along their rest bone directions (lengths) or scales the
-///     cross-sections around a bone or the torso axis (girths, with smooth
-///     profiles along the bone); every vertex follows the map of each joint
-///     blended by its skinning weights. The result is exactly linear in the
-///     parameters (the model's shape_basis), and each column is normalised
-///     to +1 mm of its own measurement on the template.
+///  4. Shape parameters = body measurements (body_measurements.h): lengths
+///     move joints along their rest bone offsets (the stature only
+///     vertically, through the spine, neck and head); limb girths scale the
+///     cross-sections around a bone (smooth profiles along it), every vertex
+///     following its joints' maps blended by its skinning weights; torso
+///     girths scale the sections about the body's vertical axis as a field
+///     of the rest position (1 on the torso, faded out into the arms and the
+///     thighs), carrying the collars and hips, and with them the limbs,
+///     along. The result is exactly linear in the parameters (the model's
+///     shape_basis), and each column is normalised to +1 mm of its own
+///     measurement on the template.
 ///  5. A joint regressor that reproduces the rig's joints from the shaped
 ///     vertices for every shape (minimum-norm weights on nearby vertices
 ///     satisfying the template and every shape direction exactly).
 ///  6. Part labels and smooth part fields (garment regions) from planes in
 ///     the rest pose; landmarks for the measurements.
 ///
-/// Cost: about 5 s at the default 15 mm edge (about 9,000 vertices) on the
+/// Cost: about 5 s at the default 15 mm edge (11,260 vertices) on the
 /// 2-core test machine, most of it the implicit function on the 10 mm grid.
 
 #include <string>
@@ -45,7 +49,7 @@ namespace knitforge {
 /// Options of make_generated_body().
 struct GeneratedBodyOptions {
   /// Target edge length of the surface mesh (mm), in [8, 60]. The default
-  /// gives about 9,000 vertices (SMPL has 6,890).
+  /// gives 11,260 vertices (SMPL has 6,890).
   double edge_length = 15.0;
   /// Remeshing iterations (>= 1).
   int remesh_iterations = 6;
