@@ -12,7 +12,9 @@ CMAKE_FLAGS = -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 export CCACHE_BASEDIR   := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all setup configure build demo test test-release test-asan bench clean
+FUZZ_SECONDS ?= 60
+
+.PHONY: all setup configure build demo test test-release test-asan bench fuzz clean
 
 all: build
 
@@ -45,6 +47,11 @@ test-asan: setup $(ASAN_BUILD)/build.ninja
 
 bench: build
 	scripts/bench $(BUILD)
+
+# Every reader's libFuzzer target for FUZZ_SECONDS each (docs/fuzzing.md);
+# make test runs them for 4 s each.
+fuzz: setup
+	scripts/fuzz --seconds $(FUZZ_SECONDS) --out $(BUILD)/fuzz
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) out

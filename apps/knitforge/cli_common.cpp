@@ -21,17 +21,186 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/prepare_surface.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/io/io_detail.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
 #include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
 #include "knitforge/io/ply_format.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/work_limit.h"
+#include "knitforge/geometry/mesh_measures.h"
+
+#include <unistd.h>
+
+#include <limits>
 
 namespace knitforge::cli {
+
+namespace {
+
+// The value as the user typed it, cut to 40 printable characters.
+std::string shown(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (out.size() >= 40) return out + "...";
+    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  }
+  return out;
+}
+
+CLI::Validator number_validator(const std::string& name, std::function<std::string(double)> check) {
+  return CLI::Validator(
+      [check](std::string& text) -> std::string {
+        size_t used = 0;
+        double v = 0.0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size()) return "'" + shown(text) + "' is not a number";
+        if (!std::isfinite(v)) return "'" + shown(text) + "' is not a finite number";
+        return check(v);
+      },
+      name);
+}
+
+}  // namespace
+
+CLI::Validator positive_number() {
+  return number_validator("POSITIVE", [](double v) {
+    return v > 0.0 ? std::string() : fmt::format("{} must be a positive number", v);
+  });
+}
+
+CLI::Validator non_negative_number() {
+  return number_validator("NONNEGATIVE", [](double v) {
+    return v >= 0.0 ? std::string() : fmt::format("{} must be zero or a positive number", v);
+  });
+}
+
+CLI::Validator number_in(double lo, double hi) {
+  return number_validator(fmt::format("[{}, {}]", lo, hi), [lo, hi](double v) {
+    return v >= lo && v <= hi ? std::string() : fmt::format("{} must be within [{}, {}]", v, lo, hi);
+  });
+}
+
+void check_output_file(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& extensions, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw UsageError(fmt::format("{}: the output file name is empty", option));
+  if (!extensions.empty()) {
+    const std::string ext = extension(path);
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+      std::string list;
+      for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+      throw InvalidInput(fmt::format("{} {}: unknown output format '{}'; use {}", option, shown(path),
+                                     shown(ext), list));
+    }
+  }
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    throw InvalidInput(fmt::format("{} {}: is a directory; give a file name{}", option, shown(path),
+                                   extensions.empty() ? "" : ", e.g. " + shown((fs::path(path) / ("out" + extensions.front())).string())));
+  }
+  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  if (!fs::is_directory(parent, ec)) {
+    throw InvalidInput(fmt::format("{} {}: the directory {} does not exist; create it first", option, shown(path),
+                                   shown(parent.string())));
+  }
+  if (::access(parent.c_str(), W_OK) != 0) {
+    throw InvalidInput(fmt::format("{} {}: the directory {} is not writable", option, shown(path), shown(parent.string())));
+  }
+  for (const auto& in : inputs) {
+    if (!in.empty() && fs::exists(path, ec) && fs::exists(in, ec) && fs::equivalent(path, in, ec)) {
+      throw InvalidInput(fmt::format("{} {}: is the input file; writing it would replace the input, give "
+                                     "another output name",
+                                     option, shown(path)));
+    }
+  }
+}
+
+void check_input_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IOError(fmt::format("{}: is a directory, not a file", shown(path)));
+  if (!fs::exists(path, ec)) throw IOError(fmt::format("{}: no such file; check the path", shown(path)));
+}
+
+void check_output_dir(const std::string& option, const std::string& path, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw UsageError(fmt::format("{}: the output directory name is empty", option));
+  std::error_code ec;
+  for (const auto& in : inputs) {
+    if (!in.empty() && fs::exists(path, ec) && fs::exists(in, ec) && fs::equivalent(path, in, ec)) {
+      throw InvalidInput(fmt::format("{} {}: is the input; give a directory for the outputs", option, shown(path)));
+    }
+  }
+  fs::path p(path);
+  if (fs::exists(p, ec) && !fs::is_directory(p, ec)) {
+    throw InvalidInput(fmt::format(
+        "{} {}: exists and is not a directory; the outputs are written into a directory, give a new or "
+        "existing directory",
+        option, shown(path)));
+  }
+  // The nearest existing ancestor must be a writable directory (create_directories makes the rest).
+  fs::path q = fs::absolute(p, ec);
+  while (!q.empty() && !fs::exists(q, ec)) {
+    if (q == q.parent_path()) break;
+    q = q.parent_path();
+  }
+  if (!fs::is_directory(q, ec)) {
+    throw InvalidInput(fmt::format("{} {}: {} is not a directory, so the output directory cannot be created",
+                                   option, shown(path), shown(q.string())));
+  }
+  if (::access(q.c_str(), W_OK) != 0) {
+    throw InvalidInput(fmt::format("{} {}: {} is not writable", option, shown(path), shown(q.string())));
+  }
+}
+
+CLI::Option* add_max_stitches_option(CLI::App& cmd, double& value) {
+  value = kDefaultMaxStitches;
+  return cmd
+      .add_option("--max-stitches", value,
+                  fmt::format("Refuse designs estimated above this many stitches (default {:.0f}; see the user "
+                              "guide, Limits)",
+                              kDefaultMaxStitches))
+      ->check(positive_number());
+}
+
+void check_surface_stitches(const TriMesh& surface, const std::string& description, const KnitParams& params,
+                            double max_stitches, double bytes_per_stitch) {
+  const double area = total_area(surface);
+  // The extent of the vertices the faces use (an unused stray vertex does not count).
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& t : surface.faces) {
+    for (int v : t) lo = lo.cwiseMin(surface.vertices[v]), hi = hi.cwiseMax(surface.vertices[v]);
+  }
+  const Vec3 size = surface.faces.empty() ? Vec3::Zero() : Vec3(hi - lo);
+  const std::string what =
+      fmt::format("{} ({:.4g} mm^2, {:.4g} x {:.4g} x {:.4g} mm) at stitch size {} x {} mm", shown(description), area,
+                  size.x(), size.y(), size.z(), params.stitch_width, params.stitch_height);
+  check_work({what, area / (params.stitch_width * params.stitch_height), "stitches", max_stitches,
+              bytes_per_stitch,
+              "check the units (--units) and the stitch size (--stitch), or raise the limit with --max-stitches"});
+  // The knitting map spans the surface: its courses and wales are bounded
+  // by the extent over the stitch height and width. A few faces reaching far
+  // out (a stray vertex 70 m away) make a huge, nearly empty map although
+  // the area is small (measured: 5.2 GB and 77 s for the mannequin panel
+  // with one such face); refused here at 20 cells per allowed stitch.
+  const double extent = size.norm();
+  check_work({fmt::format("{} spans {:.4g} mm (diagonal of the faces' bounding box): its knitting map", shown(description),
+                          extent),
+              (extent / params.stitch_height) * (extent / params.stitch_width), "cells", 20.0 * max_stitches, 8.0,
+              "look for stray vertices or faces far from the rest of the surface, check the units (--units), or "
+              "raise the limit with --max-stitches (20 cells per stitch)"});
+}
 
 KnitParams parse_stitch_size(const std::string& text) {
   const auto x = text.find_first_of("xX");
@@ -49,8 +218,8 @@ KnitParams parse_stitch_size(const std::string& text) {
   }
   if (!ok || !std::isfinite(p.stitch_width) || !std::isfinite(p.stitch_height) || p.stitch_width <= 0 ||
       p.stitch_height <= 0) {
-    throw InvalidInput(fmt::format(
-        "--stitch '{}': expected WIDTHxHEIGHT in millimetres with positive numbers, e.g. 3.5x2.8", text));
+    throw UsageError(fmt::format(
+        "--stitch '{}': expected WIDTHxHEIGHT in millimetres with positive numbers, e.g. 3.5x2.8", shown(text)));
   }
   return p;
 }
@@ -59,7 +228,7 @@ double unit_scale(const std::string& units) {
   if (units == "mm") return 1.0;
   if (units == "cm") return 10.0;
   if (units == "m") return 1000.0;
-  throw InvalidInput(fmt::format("--units '{}': expected mm, cm or m", units));
+  throw UsageError(fmt::format("--units '{}': expected mm, cm or m", shown(units)));
 }
 
 std::string extension(const std::string& path) {
@@ -111,6 +280,11 @@ TriMesh load_surface(const std::string& path, const std::string& units) {
 TriMesh load_surface_or_shape(const std::string& input, const std::string& units, double edge,
                               std::string& description, bool* builtin) {
   if (builtin) *builtin = false;
+  if (input.empty()) throw UsageError("the input name is empty; give a mesh file or a built-in shape");
+  std::error_code ec;
+  if (std::filesystem::is_directory(input, ec)) {
+    throw InvalidInput(fmt::format("{}: is a directory, not a mesh file", shown(input)));
+  }
   if (std::filesystem::is_regular_file(input)) {
     description = input;
     return load_surface(input, units);
@@ -124,7 +298,46 @@ TriMesh load_surface_or_shape(const std::string& input, const std::string& units
     }
     names += (names.empty() ? "" : ", ") + n;
   }
-  throw InvalidInput(fmt::format("{}: no such file, and not a built-in shape ({})", input, names));
+  throw InvalidInput(fmt::format("{}: no such file, and not a built-in shape ({})", shown(input), names));
+}
+
+TriMesh load_design_surface(const std::string& input, const std::string& units, double edge,
+                            std::string& description, bool* builtin, std::vector<int>* vertex_map) {
+  const TriMesh raw = load_surface_or_shape(input, units, edge, description, builtin);
+  PreparedSurface p = prepare_surface(raw);
+  if (p.unused_vertices > 0 || p.welded_vertices > 0) {
+    std::string what;
+    if (p.unused_vertices > 0) what = fmt::format("dropped {} vertices used by no face", p.unused_vertices);
+    if (p.welded_vertices > 0) {
+      what += fmt::format("{}welded {} vertices that repeat another's position (a split seam)",
+                          what.empty() ? "" : "; ", p.welded_vertices);
+    }
+    note(fmt::format("{}: {}", description, what));
+  }
+  if (vertex_map) *vertex_map = std::move(p.vertex_map);
+  return std::move(p.mesh);
+}
+
+GeodesicSource symmetry_plane_source(const TriMesh& mesh) {
+  const BoundingBox box = bounding_box(mesh);
+  return source_from_plane(mesh, Vec3(1, 0, 0), 0.5 * (box.min.x() + box.max.x()));
+}
+
+std::vector<std::vector<Vec3>> read_cuts(const std::string& path, double scale) {
+  const auto lines = read_polylines_obj(path);
+  if (lines.empty()) throw InvalidInput(path + ": no polyline (l element) to cut along");
+  std::vector<std::vector<Vec3>> out;
+  for (const auto& line : lines) {
+    out.push_back(line.points);
+    for (Vec3& p : out.back()) p *= scale;
+  }
+  return out;
+}
+
+CLI::Option* add_cut_option(CLI::App& cmd, std::string& value) {
+  return cmd.add_option("--cut", value,
+                        "Cut the surface open along the polylines of FILE.obj first (your own seams); without it, "
+                        "a surface that is not a disk is cut into one automatically");
 }
 
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value) {
@@ -136,6 +349,34 @@ bool is_stitch_mesh_ply(const std::string& path) {
   const ply_detail::PlyHeader header = ply_detail::read_ply_header(path, data);
   const int face = header.find("face");
   return face >= 0 && header.elements[face].find("type") >= 0;
+}
+
+nlohmann::json seams_json(const std::vector<Seam>& seams) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Seam& s : seams) {
+    const Vec3& a = s.path.front();
+    const Vec3& b = s.path.back();
+    list.push_back({{"kind", to_string(s.kind)},
+                    {"on_source", s.on_source},
+                    {"length_mm", s.length},
+                    {"from_mm", {a.x(), a.y(), a.z()}},
+                    {"to_mm", {b.x(), b.y(), b.z()}}});
+  }
+  return {{"count", static_cast<int>(seams.size())}, {"length_mm", seam_length(seams)}, {"seams", list}};
+}
+
+void note_seams(const std::vector<Seam>& seams, int boundary_loops, int genus, const std::string& extra) {
+  if (seams.empty()) return;
+  note(fmt::format("cut the surface ({} boundary loop(s), genus {}) into a disk along {} seam(s), {:.1f} mm "
+                   "(seams.obj){}",
+                   boundary_loops, genus, seams.size(), seam_length(seams), extra));
+}
+
+void write_seams_obj(const std::string& outdir, const std::vector<Seam>& seams) {
+  if (seams.empty()) return;
+  std::vector<std::vector<Vec3>> lines;
+  for (const Seam& seam : seams) lines.push_back(seam.path);
+  write_polylines_obj((std::filesystem::path(outdir) / "seams.obj").string(), lines);
 }
 
 nlohmann::json scalar_stats_json(const ScalarStats& s) {
@@ -165,7 +406,9 @@ void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& o) {
       ->capture_default_str();
   cmd.add_flag("--no-knitout", o.no_knitout, "Do not write the machine program");
   cmd.add_option("--waste-rows", o.waste_rows,
-                 "Courses of waste yarn before the fabric (default: the machine's, e.g. 70 on the Kniterate)");
+                 "Courses of waste yarn before the fabric (at most 1000; default: the machine's, e.g. 70 on the "
+                 "Kniterate)")
+      ->check(number_in(0, 1000));
 }
 
 nlohmann::json design_machine_end(const DesignMachineOptions& o, const std::string& outdir, const KnittingMap& map,

@@ -14,8 +14,11 @@
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
 #include "knitforge/evaluate/scalar_stats.h"
+#include "knitforge/geometry/cut_to_disk.h"
+#include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/work_limit.h"
 
 namespace knitforge::cli {
 
@@ -42,6 +45,47 @@ void add_close_command(CLI::App& app, Action& action);
 void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
 void add_body_command(CLI::App& app, Action& action);
+
+/// A usage error found after parsing (a missing, empty or malformed
+/// argument): the program exits 2, like CLI11's own parse errors.
+class UsageError : public InvalidInput {
+ public:
+  using InvalidInput::InvalidInput;
+};
+
+/// Option validators that accept only finite numbers (no nan, inf) and say
+/// what is wrong with the value as given ("--edge 0: must be a positive
+/// number"; never the representable range).
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+CLI::Validator number_in(double lo, double hi);
+
+/// Checks an output file before any work: a non-empty name (UsageError
+/// otherwise) with one of `extensions` (".csv"; empty: any), not a
+/// directory, in an existing writable directory, and not the same file as
+/// any of `inputs`.
+/// \throw UsageError / InvalidInput naming `option` and the path.
+void check_output_file(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& extensions, const std::vector<std::string>& inputs = {});
+
+/// Checks that an input file exists and is a file (not a directory).
+/// \throw IOError naming the path.
+void check_input_file(const std::string& path);
+
+/// Checks an output directory before any work: a non-empty name, an
+/// existing directory or one that can be created (its nearest existing
+/// ancestor is a writable directory), and not one of `inputs`.
+void check_output_dir(const std::string& option, const std::string& path,
+                      const std::vector<std::string>& inputs = {});
+
+/// Adds "--max-stitches N" (default kDefaultMaxStitches) to cmd.
+CLI::Option* add_max_stitches_option(CLI::App& cmd, double& value);
+
+/// Refuses, before any work, a surface whose stitch count area / (w x h)
+/// exceeds max_stitches (check_work(); the message names the surface, its
+/// area and size, and says how to override).
+void check_surface_stitches(const TriMesh& surface, const std::string& description, const KnitParams& params,
+                            double max_stitches, double bytes_per_stitch);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.
@@ -84,12 +128,43 @@ TriMesh load_surface(const std::string& path, const std::string& units);
 TriMesh load_surface_or_shape(const std::string& input, const std::string& units, double edge,
                               std::string& description, bool* builtin = nullptr);
 
+/// The input of a design command: load_surface_or_shape(), then
+/// prepare_surface() (unused vertices dropped, split vertices welded; a
+/// note says what changed). `vertex_map` (optional) receives, for every
+/// vertex of the file, its index in the returned mesh or -1.
+TriMesh load_design_surface(const std::string& input, const std::string& units, double edge,
+                            std::string& description, bool* builtin = nullptr,
+                            std::vector<int>* vertex_map = nullptr);
+
+/// The plane x = centre of the bounding box as a source (the default source
+/// of `shortrow`, and where `flatten` prefers its seams: garments are
+/// usually modelled symmetric about x = 0).
+GeodesicSource symmetry_plane_source(const TriMesh& mesh);
+
+/// The polylines of a --cut file (OBJ `l` elements), scaled to mm.
+/// \throw InvalidInput when the file has no polyline.
+std::vector<std::vector<Vec3>> read_cuts(const std::string& path, double scale);
+
+/// Adds the standard "--cut FILE.obj" option of the design commands.
+CLI::Option* add_cut_option(CLI::App& cmd, std::string& value);
+
 /// Adds the standard "--stitch WxH" option.
 CLI::Option* add_stitch_option(CLI::App& cmd, std::string& value);
 
 /// Writes a design command's report (indented JSON) to `path` atomically
 /// and, when `print` (--json), also to stdout.
 void write_report_json(const std::string& path, const nlohmann::json& report, bool print);
+
+/// The seams of a design for report.json: count, total length (mm) and one
+/// entry per seam (kind, on_source, length_mm, end points).
+nlohmann::json seams_json(const std::vector<Seam>& seams);
+
+/// The note a design command gives when it cut the surface into a disk
+/// (nothing when there are no seams); `extra` ends the line.
+void note_seams(const std::vector<Seam>& seams, int boundary_loops, int genus, const std::string& extra = "");
+
+/// Writes OUTDIR/seams.obj (one polyline per seam) when there are seams.
+void write_seams_obj(const std::string& outdir, const std::vector<Seam>& seams);
 
 /// Statistics for a report: count, min, mean, rms, max, p50, p90, p99.
 nlohmann::json scalar_stats_json(const ScalarStats& s);

@@ -16,7 +16,7 @@
 #include "knitforge/design/flatten/knit_flattened_pattern.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/shapes.h"
-#include "knitforge/geometry/surface_checks.h"
+#include "knitforge/geometry/cut_to_disk.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/report/report_html.h"
@@ -32,7 +32,7 @@ nlohmann::json distortion_json(const DistortionStats& s) {
   return {{"min_log_sigma", s.min_log_sigma},   {"max_log_sigma", s.max_log_sigma},
           {"mean_log_sigma", s.mean_log_sigma}, {"rms_log_sigma", s.rms_log_sigma},
           {"area_3d_mm2", s.area_3d},           {"area_2d_mm2", s.area_2d},
-          {"flipped_faces", s.flipped_faces}};
+          {"max_abs_log_sigma", s.max_abs_log_sigma()}, {"flipped_faces", s.flipped_faces}};
 }
 
 
@@ -42,10 +42,10 @@ void add_flatten_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "flatten", "3D surface -> flattened 2D pattern with darts -> knittable knitting map (seed ch. 2)");
   struct Opts {
-    std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts;
+    std::string input, outdir, stitch = "3.5x2.8", units = "mm", darts, cut;
     int auto_darts = 0;
-    double edge = kDefaultShapeEdgeLength;
-    bool allow_wide = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+    double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
+    bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
@@ -58,15 +58,20 @@ void add_flatten_command(CLI::App& app, Action& action) {
   add_stitch_option(*cmd, o->stitch);
   cmd->add_option("--units", o->units, "Units of the input mesh and of dart positions: mm, cm, m");
   cmd->add_option("--darts", o->darts, "Darts to cut, as JSON (see docs/flatten.md)");
+  add_cut_option(*cmd, o->cut);
   cmd->add_option("--auto-darts", o->auto_darts,
                   "Add up to N darts where the distortion is worst, while it goes down")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
+  cmd->add_flag("--auto-darts-rms-only", o->rms_only,
+                "Keep an automatic dart when it lowers the RMS distortion even if its tip raises the largest "
+                "(domes: by default such a dart is not kept)");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--allow-wide-darts", o->allow_wide,
                 "Accept darts wider than the knittable angle (report them instead of failing)");
   cmd->add_flag("--no-long-rows", o->no_long_rows, "Do not add long rows at the bottom / top of the map");
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   add_design_machine_options(*cmd, o->mach);
@@ -75,11 +80,25 @@ void add_flatten_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->darts, o->cut});
       Timer t;
       std::string description;
       bool builtin = false;
-      TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description, &builtin);
-      require_disk(surface, description);
+      const TriMesh input = load_design_surface(o->input, o->units, o->edge, description, &builtin);
+      check_surface_stitches(input, description, params, o->max_stitches, 2500.0);
+      // A surface that is not a disk is cut into one; its seams prefer the
+      // plane x = centre (the symmetry plane of a garment), the longest piece
+      // of it between two boundary loops first: on the built-in cap a seam
+      // down the back flattens with RMS log sigma 0.085 where one under the
+      // chin gives 0.223 (docs/flatten.md).
+      CutToDiskOptions seam_options;
+      seam_options.longest_source_seam = true;
+      if (!o->cut.empty()) seam_options.cuts = read_cuts(o->cut, scale);
+      seam_options.source = symmetry_plane_source(input);
+      CutToDisk opened = cut_to_disk(input, seam_options, description);
+      const TriMesh surface = std::move(opened.mesh);
+      const std::vector<Seam> seams = std::move(opened.seams);
+      note_seams(seams, opened.input_boundary_loops, opened.input_genus);
       std::vector<DartSpec> darts;
       if (!o->darts.empty()) darts = parse_darts_json(read_text_file(o->darts, "darts file"), o->darts, builtin ? 1.0 : scale);
       const double load_seconds = t.seconds();
@@ -88,7 +107,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       fo.stitch_width = params.stitch_width;
       fo.stitch_height = params.stitch_height;
       fo.enforce_dart_angle = !o->allow_wide;
-      note("flattening without darts ...");
+      note("[  0 %] flattening without darts ...");
       t.reset();
       Flattening plain = flatten_surface(surface, {}, fo);
       const double plain_seconds = t.seconds();
@@ -100,9 +119,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
       std::string auto_stop;
       std::vector<DartSpec> all_darts = darts;
       if (!darts.empty() || o->auto_darts > 0) {
-        note(fmt::format("flattening with {} dart(s){} ...", darts.size(),
+        note(fmt::format("[ 25 %] flattening with {} dart(s){} ...", darts.size(),
                          o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
-        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo);
+        DartHintOptions ho;
+        ho.require_lower_maximum = !o->rms_only;
+        AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo, ho);
         flat = std::move(a.flattening);
         added = std::move(a.added);
         auto_stop = a.stop_reason;
@@ -110,7 +131,8 @@ void add_flatten_command(CLI::App& app, Action& action) {
         for (size_t k = 0; k < a.rms_sequence.size(); ++k) {
           const size_t n = darts.size() + k;
           if (n == 0) continue;
-          sequence.push_back({{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}});
+          sequence.push_back(
+              {{"darts", n}, {"rms_log_sigma", a.rms_sequence[k]}, {"max_abs_log_sigma", a.max_sequence[k]}});
         }
         sequence.back()["distortion"] = distortion_json(flat.stats);
       } else {
@@ -118,13 +140,13 @@ void add_flatten_command(CLI::App& app, Action& action) {
       }
       const double darts_seconds = t.seconds();
 
-      note("rasterising the pattern and checking the map ...");
+      note("[ 50 %] rasterising the pattern and checking the map ...");
       KnitPatternOptions ko;
       ko.raster.long_rows = !o->no_long_rows;
       ko.evaluate = !o->no_evaluate;
       const KnitPatternResult k = knit_flattened_pattern(flat, surface, params, ko);
 
-      note("writing outputs ...");
+      note("[ 90 %] writing outputs ...");
       t.reset();
       const std::filesystem::path dir(o->outdir);
       std::filesystem::create_directories(dir);
@@ -151,6 +173,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
       MeshWriteOptions plain_ply;
       plain_ply.ascii = o->ascii;
       write_mesh(out("target.ply"), surface, plain_ply);
+      write_seams_obj(o->outdir, seams);
       const std::string darts_text = darts_to_json(all_darts, builtin ? 1.0 : scale);
       write_file_atomically(out("darts.json"), [&](std::ostream& os) { os << darts_text; });
       if (k.knittability.ok()) {
@@ -162,13 +185,17 @@ void add_flatten_command(CLI::App& app, Action& action) {
       nlohmann::json report;
       report["input"] = {{"surface", description},
                          {"units", builtin ? std::string("mm") : o->units},
-                         {"vertices", surface.num_vertices()},
-                         {"faces", surface.num_faces()},
+                         {"vertices", input.num_vertices()},
+                         {"faces", input.num_faces()},
+                         {"boundary_loops", opened.input_boundary_loops},
+                         {"genus", opened.input_genus},
                          {"area_mm2", total_area(surface)}};
+      report["seams"] = seams_json(seams);
       report["parameters"] = {{"stitch_width_mm", params.stitch_width},
                               {"stitch_height_mm", params.stitch_height},
                               {"darts_file", o->darts},
                               {"auto_darts", o->auto_darts},
+                              {"auto_darts_rms_only", o->rms_only},
                               {"allow_wide_darts", o->allow_wide},
                               {"long_rows", !o->no_long_rows},
                               {"arap_tolerance", fo.tolerance},
@@ -179,8 +206,11 @@ void add_flatten_command(CLI::App& app, Action& action) {
                               {"converged", flat.converged},
                               {"relative_energy", flat.relative_energy},
                               {"flipped_faces", flat.flipped_faces},
+                              {"arap_flipped_faces", flat.arap_flipped_faces},
+                              {"injective_solver", flat.injective_solver},
                               {"distortion_before_darts", sequence.front()["distortion"]},
                               {"distortion", distortion_json(flat.stats)},
+                              {"stitch_max_abs_log_sigma", flat.stitch_max_abs_log_sigma},
                               {"distortion_sequence", sequence}};
       nlohmann::json dl = nlohmann::json::array();
       for (size_t i = 0; i < flat.darts.size(); ++i) {
@@ -261,13 +291,21 @@ void add_flatten_command(CLI::App& app, Action& action) {
       write_report_html(o->outdir);
 
       note(fmt::format(
-          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}; map {} rows x {} columns, "
-          "{} stitches; {:.2f} s -> {}",
+          "{} dart(s), distortion RMS log sigma {:.4f} -> {:.4f}, largest |log sigma| {:.4f} (at stitch scale "
+          "{:.4f}){}; map {} rows x {} columns, {} stitches; {:.2f} s -> {}",
           flat.darts.size(), sequence.front()["distortion"]["rms_log_sigma"].get<double>(),
-          flat.stats.rms_log_sigma, r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+          flat.stats.rms_log_sigma, flat.stats.max_abs_log_sigma(), flat.stitch_max_abs_log_sigma,
+          !flat.injective_solver ? std::string()
+          : flat.arap_flipped_faces > 0
+              ? fmt::format(" (fold-free solver: ARAP folded {} face(s))", flat.arap_flipped_faces)
+              : fmt::format(" (fold-free solver: ARAP's largest was {:.4f})", flat.arap_max_abs_log_sigma),
+          r.map.rows, r.map.cols, r.map.num_stitches(), all.seconds(), o->outdir));
+      if (o->auto_darts > 0) note("automatic darts: " + auto_stop);
       if (!flat.flipped_faces.empty()) {
-        note(fmt::format("{} face(s) are flipped in the pattern (listed in report.json); more darts may help",
+        // Cannot happen (the flattening is injective by construction); never reported as a success.
+        note(fmt::format("error: {} face(s) are flipped in the pattern (listed in report.json)",
                          flat.flipped_faces.size()));
+        return 1;
       }
       if (k.evaluation) {
         note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",

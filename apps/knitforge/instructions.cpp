@@ -25,9 +25,8 @@ void add_instructions_command(CLI::App& app, Action& action) {
   cmd->add_flag("--no-wrap", o->no_wrap, "Do not wrap the held needle at short-row turns");
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_output_file("-o", o->output, {".txt", ".html", ".htm"}, {o->input});
       const std::string ext = extension(o->output);
-      if (ext != ".txt" && ext != ".html" && ext != ".htm")
-        throw InvalidInput(fmt::format("{}: expected a .txt or .html output file", o->output));
       const MachineProfile& prof = machine_profile(o->machine);
       const StitchInput in = load_stitch_input(o->input);
       const KnittingMap map = in.is_map ? in.map : stitch_mesh_to_map(in.mesh);

@@ -31,30 +31,36 @@ void add_knitout_command(CLI::App& app, Action& action) {
   cmd->add_option("input", o->input, "Knitting map (.csv) or stitch mesh (.ply)")->required();
   cmd->add_option("-o,--output", o->output, "Output knitout file (.k)")->required();
   cmd->add_option("--machine", o->machine, "Machine profile: " + names)->capture_default_str();
-  cmd->add_option("--gauge", o->gauge, "Value of the ;;Gauge: header (default: the profile's)");
+  cmd->add_option("--gauge", o->gauge, "Value of the ;;Gauge: header (default: the profile's)")
+      ->check(non_negative_number());
   cmd->add_option("--carrier", o->carrier, "Main yarn carrier (default: the profile's first)");
   cmd->add_option("--waste-carrier", o->waste_carrier, "Waste yarn carrier (default: second)");
   cmd->add_option("--draw-carrier", o->draw_carrier, "Draw-thread carrier (default: third)");
   cmd->add_option("--waste-rows", o->waste_rows,
-                  "Courses of waste yarn before the fabric, followed by a draw thread (0: none; default: the "
-                  "machine's, e.g. 70 on the Kniterate, 16 on the Shima, 0 on generic)");
+                  "Courses of waste yarn before the fabric, followed by a draw thread (0: none; at most 1000; "
+                  "default: the machine's, e.g. 70 on the Kniterate, 16 on the Shima, 0 on generic)")
+      ->check(number_in(0, 1000));
   cmd->add_option("--bind-off", o->bind_off, "chain (transfers + knitted tail) or waste (live loops on waste yarn)")
       ->capture_default_str();
-  cmd->add_option("--bind-off-waste-rows", o->bind_off_waste_rows, "Waste courses for --bind-off waste")
-      ->capture_default_str();
-  cmd->add_option("--tail-rows", o->tail_rows, "Tail courses after a chain bind-off")->capture_default_str();
+  cmd->add_option("--bind-off-waste-rows", o->bind_off_waste_rows, "Waste courses for --bind-off waste (at most 1000)")
+      ->capture_default_str()
+      ->check(number_in(0, 1000));
+  cmd->add_option("--tail-rows", o->tail_rows, "Tail courses after a chain bind-off (at most 1000)")
+      ->capture_default_str()
+      ->check(number_in(0, 1000));
   cmd->add_flag("--open-turns", o->open_turns, "Do not tuck on the held needle at short-row turns");
   cmd->add_option("--position", o->position, "Value of ;;Position: (Left, Center, Right, Keep)")
       ->capture_default_str();
   cmd->add_option("--stitch-number", o->stitch_number,
                   "x-stitch-number of the fabric courses (a stitch-table entry; Kniterate 0..9)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--xfer-stitch-number", o->xfer_stitch_number, "x-xfer-stitch-number of the fabric (Kniterate)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--speed-number", o->speed_number, "x-speed-number of the fabric courses")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_output_file("-o", o->output, {".k"}, {o->input});
       const MachineProfile& prof = machine_profile(o->machine);
       KnitoutOptions ko;
       ko.carrier = o->carrier;

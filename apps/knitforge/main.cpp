@@ -5,9 +5,37 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 
 #include "cli_common.h"
 #include "knitforge/util/errors.h"
+
+namespace {
+
+// Every message is one line of printable text: line breaks become "; ",
+// other control or non-ASCII bytes "?", and a message longer than 600
+// characters is cut (the library quotes at most 80 characters of input;
+// this is the last guard against echoing raw input).
+std::string one_line(const std::string& message) {
+  std::string out;
+  for (size_t i = 0; i < message.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(message[i]);
+    if (c == '\n') {
+      if (i + 1 < message.size()) out += "; ";
+    } else if (c == '\t') {
+      out += ' ';
+    } else {
+      out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+    }
+    if (out.size() >= 600) {
+      out += fmt::format("... ({} more characters)", message.size() - i - 1);
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace knitforge;
@@ -47,21 +75,25 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "knitforge: usage error: %s\n", e.what());
+    std::fprintf(stderr, "knitforge: usage error: %s\n", one_line(e.what()).c_str());
     std::fprintf(stderr, "Run 'knitforge --help' for the commands and their options.\n");
     return 2;
   }
 
   try {
     return action ? action() : 0;
+  } catch (const cli::UsageError& e) {
+    std::fprintf(stderr, "knitforge: usage error: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "Run 'knitforge --help' for the commands and their options.\n");
+    return 2;
   } catch (const Error& e) {
-    std::fprintf(stderr, "knitforge: error: %s\n", e.what());
+    std::fprintf(stderr, "knitforge: error: %s\n", one_line(e.what()).c_str());
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "knitforge: error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "knitforge: internal error: %s\n", e.what());
+    std::fprintf(stderr, "knitforge: internal error: %s\n", one_line(e.what()).c_str());
     return 1;
   }
 }

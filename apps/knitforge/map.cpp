@@ -18,6 +18,7 @@ void add_map_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->outputs, "Output file(s): .csv, .png, .svg (repeatable)")->required();
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      for (const auto& out : o->outputs) check_output_file("-o", out, {".csv", ".png", ".svg"}, {o->input});
       const StitchInput in = load_stitch_input(o->input);
       const KnittingMap map = in.is_map ? in.map : stitch_mesh_to_map(in.mesh);
       for (const auto& out : o->outputs) write_map_by_extension(out, map);

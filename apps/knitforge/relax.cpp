@@ -14,24 +14,28 @@ void add_relax_command(CLI::App& app, Action& action) {
   struct Opts {
     std::string input, output, stitch = "3.5x2.8";
     RelaxOptions relax;
+    double max_stitches = kDefaultMaxStitches;
     bool ascii = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("map", o->input, "Knitting map (.csv)")->required();
   cmd->add_option("-o,--output", o->output, "Stitch mesh (.ply)")->required();
   add_stitch_option(*cmd, o->stitch);
-  cmd->add_option("--iterations", o->relax.max_iterations, "Maximum Shape-Up iterations")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--iterations", o->relax.max_iterations, "Maximum Shape-Up iterations (at most 100000)")
+      ->check(number_in(0, 100000));
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_option("--warm-up", o->relax.warm_up,
                   "z warm-up amplitude, fraction of the map's diagonal (0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--ascii", o->ascii, "Write an ASCII PLY instead of binary");
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const KnitParams params = parse_stitch_size(o->stitch);
-      if (extension(o->output) != ".ply") throw InvalidInput(o->output + ": the stitch mesh is written as .ply");
+      check_output_file("-o", o->output, {".ply"}, {o->input});
       const StitchInput in = load_stitch_input(o->input);
       if (!in.is_map) throw InvalidInput(o->input + ": relax takes a knitting map (.csv)");
+      check_work({fmt::format("relaxing {}", o->input), static_cast<double>(in.map.num_stitches()), "stitches",
+                  o->max_stitches, 0.0, "raise the limit with --max-stitches"});
       Timer t;
       const StitchMesh topo = map_to_stitch_mesh_topology(in.map, params);
       const RelaxResult r = relax_stitch_mesh(topo, params, o->relax);

@@ -130,7 +130,7 @@ void add_render_command(CLI::App& app, Action& action) {
   struct Opts {
     std::string input, output, stitch = "3.5x2.8", camera, size = "800x600", units = "mm", detail = "auto";
     bool yarn = false, mesh = false, ortho = false, edges = false, open_ends = false;
-    double fov = 30.0;
+    double fov = 30.0, max_stitches = kDefaultMaxStitches, max_triangles = 5e7;
     TubeOptions tube;
   };
   auto o = std::make_shared<Opts>();
@@ -150,38 +150,39 @@ void add_render_command(CLI::App& app, Action& action) {
                   "from the front, slightly from the side and below)");
   cmd->add_flag("--ortho", o->ortho, "Orthographic instead of perspective projection");
   cmd->add_option("--fov", o->fov, "Perspective vertical field of view in degrees (default 30)")
-      ->check(CLI::Range(1.0, 170.0));
+      ->check(number_in(1.0, 170.0));
   cmd->add_option("--size", o->size,
                   "Picture size WIDTHxHEIGHT in pixels (.png; .svg uses the width and aspect)");
   cmd->add_flag("--edges", o->edges, "PNG: draw stitch outlines (--mesh) or triangle edges");
   cmd->add_option("--units", o->units, "Units of a plain triangle-mesh input: mm, cm or m (default mm)");
   cmd->add_option("--radius", o->tube.radius, "Tube (yarn) radius in mm (0 = 0.12 x stitch width)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--plies", o->tube.plies, "Plies per yarn (sides of the twisted prism, default 6)")
-      ->check(CLI::Range(1, 64));
+      ->check(number_in(1, 64));
   cmd->add_option("--ply-vertices", o->tube.vertices_per_ply, "Cross-section vertices per ply (default 2)")
-      ->check(CLI::Range(1, 32));
+      ->check(number_in(1, 32));
   cmd->add_option("--ply-depth", o->tube.ply_depth, "Ply relief in [0, 1] (default 0.3)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_in(0.0, 1.0));
   cmd->add_option("--twist", o->tube.twist_per_mm, "Ply twist in turns per mm (default 0.15)");
   auto* ply_vertices_opt = cmd->get_option("--ply-vertices");
   auto* ring_spacing_opt = cmd->add_option("--ring-spacing", o->tube.ring_spacing,
                                            "Distance between tube cross-sections in mm (0 = radius)")
-                               ->check(CLI::NonNegativeNumber);
+                               ->check(non_negative_number());
   cmd->add_option("--detail", o->detail,
                   "Yarn tube detail: full (plies with relief, a cross-section every radius), preview (plain "
                   "twisted prism, a cross-section every mm) or auto (full up to " +
                       std::to_string(kFullDetailStitches) + " stitches, preview beyond; default)")
       ->check(CLI::IsMember({"auto", "full", "preview"}));
   cmd->add_flag("--open-ends", o->open_ends, "Leave the yarn ends open (no caps)");
+  add_max_stitches_option(*cmd, o->max_stitches);
+  cmd->add_option("--max-triangles", o->max_triangles,
+                  "Refuse yarn tubes estimated above this many triangles (default 50 million, ~2.5 GB)")
+      ->check(positive_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const KnitParams params = parse_stitch_size(o->stitch);
+      check_output_file("-o", o->output, {".glb", ".obj", ".svg", ".png"}, {o->input});
       const std::string ext = extension(o->output);
-      if (ext != ".glb" && ext != ".obj" && ext != ".svg" && ext != ".png") {
-        throw InvalidInput(
-            fmt::format("{}: unknown output format '{}'; use .glb, .obj, .svg or .png", o->output, ext));
-      }
       const auto [width, height] = parse_pixels(o->size);
       const CameraSpec spec = parse_camera(o->camera);
 
@@ -192,6 +193,9 @@ void add_render_command(CLI::App& app, Action& action) {
       const bool stitch_input = in_ext == ".csv" || (in_ext == ".ply" && is_stitch_mesh_ply(o->input));
       if (stitch_input) {
         const StitchInput in = load_stitch_input(o->input);
+        const double stitches = in.is_map ? static_cast<double>(in.map.num_stitches()) : in.mesh.num_stitches();
+        check_work({fmt::format("rendering {}", o->input), stitches, "stitches", o->max_stitches, 0.0,
+                    "raise the limit with --max-stitches"});
         const StitchMesh mesh = in.is_map ? map_to_stitch_mesh(in.map, params) : in.mesh;
         if (o->mesh) {
           StitchColourOptions colours;
@@ -221,6 +225,18 @@ void add_render_command(CLI::App& app, Action& action) {
           YarnOptions yarn_options;
           yarn_options.yarn_radius = tube.radius;  // the loops' offsets match the tubes
           const YarnModel yarn = stitch_mesh_to_yarn(mesh, params, yarn_options);
+          {
+            // Tube triangles: a ring of plies x vertices per ply every ring spacing along the yarn.
+            double length = 0.0;
+            for (const Yarn& y : yarn.yarns)
+              for (size_t k = 1; k < y.points.size(); ++k) length += (y.points[k] - y.points[k - 1]).norm();
+            const double radius = tube.radius > 0.0 ? tube.radius : 0.12 * params.stitch_width;
+            const double spacing = tube.ring_spacing > 0.0 ? tube.ring_spacing : radius;
+            const double triangles = 2.0 * (length / spacing + 1.0) * tube.plies * tube.vertices_per_ply;
+            check_work({fmt::format("yarn tubes of {:.4g} m of yarn every {:.3g} mm", length / 1000.0, spacing),
+                        triangles, "triangles", o->max_triangles, 50.0,
+                        "use a larger --ring-spacing, --detail preview, or raise the limit with --max-triangles"});
+          }
           std::vector<RenderColour> colours;
           for (const Yarn& y : yarn.yarns) {
             colours.push_back(

@@ -24,10 +24,11 @@ void add_report_command(CLI::App& app, Action& action) {
   cmd->add_option("--title", o->title, "Page title (default: the directory's name)");
   cmd->add_option("--resolution", o->resolution, "Coordinates are rounded to this length (mm)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-simulate", o->no_simulate, "Do not run the knitout simulator for the statistics");
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      if (!o->output.empty()) check_output_file("-o", o->output, {".html", ".htm"});
       ReportHtmlOptions opt;
       opt.output = o->output;
       opt.title = o->title;

@@ -39,8 +39,9 @@ void add_sample_map_command(CLI::App& app, Action& action) {
         return 0;
       }
       if (o->name.empty() || o->outputs.empty()) {
-        throw InvalidInput("sample-map: give a map name and at least one -o FILE (see --list)");
+        throw UsageError("sample-map: give a map name and at least one -o FILE (see --list)");
       }
+      for (const auto& out : o->outputs) check_output_file("-o", out, {".csv", ".png", ".svg"});
       const bool random_opts = *rows || *cols || *ends || *scols || *seed || *bshape;
       const bool cup_opts = *wales || *turns;
       if (random_opts && o->name != "random") {
@@ -49,6 +50,8 @@ void add_sample_map_command(CLI::App& app, Action& action) {
       if (cup_opts && o->name != "cup") throw InvalidInput("--wales/--turns apply to 'cup' only");
       KnittingMap map;
       if (o->name == "random" && random_opts) {
+        check_work({"sample-map random", static_cast<double>(o->random.rows) * o->random.cols, "cells", kDefaultMaxStitches,
+                    0.0, "use fewer --rows / --cols"});
         map = random_knitting_map(o->random);
       } else if (o->name == "cup" && cup_opts) {
         map = cup_knitting_map(o->cup);

@@ -22,7 +22,7 @@ void add_shape_command(CLI::App& app, Action& action) {
   cmd->add_option("name", *name, "Shape name: " + names);
   cmd->add_option("-o,--output", *output, "Output mesh (.obj, .ply)");
   cmd->add_option("--edge", *edge, "Target edge length of the triangulation (mm)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--list", *list, "List the shape names and exit");
   cmd->callback([=, &action] {
     action = [=]() -> int {
@@ -31,8 +31,9 @@ void add_shape_command(CLI::App& app, Action& action) {
         return 0;
       }
       if (name->empty() || output->empty()) {
-        throw InvalidInput("shape: give a shape name and -o FILE (see 'knitforge shape --list')");
+        throw UsageError("shape: give a shape name and -o FILE (see 'knitforge shape --list')");
       }
+      check_output_file("-o", *output, {".obj", ".ply", ".off", ".stl"});
       const TriMesh mesh = make_shape(*name, *edge);
       write_mesh(*output, mesh);
       const BoundingBox box = bounding_box(mesh);

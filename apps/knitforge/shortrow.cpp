@@ -1,5 +1,6 @@
 // knitforge shortrow: 3D surface -> short-row stitch mesh and knitting map
 // (seed §3.2), with evaluation and a report.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -16,11 +17,8 @@
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/evaluate/stitch_distortion.h"
-#include "knitforge/geometry/cut_mesh_along_path.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/shapes.h"
-#include "knitforge/geometry/split_mesh_along_path.h"
-#include "knitforge/geometry/surface_checks.h"
 #include "knitforge/io/knittability_json.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
@@ -50,14 +48,32 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
   return out;
 }
 
-/// --source TEXT (coordinates in the input's units, scaled by `scale`).
-GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale) {
-  if (text.empty()) {
-    const BoundingBox box = bounding_box(mesh);
-    const double cx = 0.5 * (box.min.x() + box.max.x());
-    GeodesicSource s = source_from_plane(mesh, Vec3(1, 0, 0), cx);
-    return s;
+/// An index given as a number of --source: a whole number in [0, 2^31).
+int source_index(double x, const std::string& what) {
+  if (!(x >= 0.0) || x != std::floor(x) || x > 2147483647.0) {
+    throw UsageError(fmt::format("--source {}: {:.17g} is not an index (a whole number from 0 to 2147483647)",
+                                 what, x));
   }
+  return static_cast<int>(x);
+}
+
+/// A vertex id of the input file as a vertex of the prepared mesh.
+int mapped_vertex(const std::vector<int>& vertex_map, double x, const std::string& what) {
+  const int id = source_index(x, what);
+  if (static_cast<size_t>(id) >= vertex_map.size()) {
+    throw InvalidInput(fmt::format("--source {}: vertex id {} is not a vertex of the input (ids 0 to {})", what, id,
+                                   vertex_map.size() - 1));
+  }
+  const int v = vertex_map[static_cast<size_t>(id)];
+  if (v < 0) throw InvalidInput(fmt::format("--source {}: vertex {} is used by no face", what, id));
+  return v;
+}
+
+/// --source TEXT (coordinates in the input's units, scaled by `scale`;
+/// vertex ids of the input file, mapped by `vertex_map`).
+GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double scale,
+                            const std::vector<int>& vertex_map) {
+  if (text.empty()) return symmetry_plane_source(mesh);
   const size_t colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
@@ -72,11 +88,11 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
       throw InvalidInput(
           "--source boundary:BEGIN,END[,LOOP] takes arc-length fractions in [0, 1] (and a loop index)");
     }
-    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? static_cast<int>(v[2]) : 0);
+    return source_from_boundary(mesh, v[0], v[1], v.size() == 3 ? source_index(v[2], "boundary loop") : 0);
   }
   if (kind == "boundary-vertices" || kind == "vertex") {
     std::vector<int> ids;
-    for (double x : parse_numbers(args, kind)) ids.push_back(static_cast<int>(x));
+    for (double x : parse_numbers(args, kind)) ids.push_back(mapped_vertex(vertex_map, x, kind));
     if (kind == "vertex") {
       if (ids.size() != 1) throw InvalidInput("--source vertex:ID takes one vertex index");
       return source_from_vertex(mesh, ids[0]);
@@ -94,28 +110,6 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
       fmt::format("--source '{}': unknown kind '{}'; use plane:NX,NY,NZ,D, boundary:BEGIN,END[,LOOP], "
                   "boundary-vertices:I,J,..., vertex:I or polyline:FILE.obj",
                   text, kind));
-}
-
-/// Cuts the surface open along a polyline given in an OBJ file (--cut).
-TriMesh cut_surface(const TriMesh& mesh, const std::string& path, double scale, int& cut_edges) {
-  const auto lines = read_polylines_obj(path);
-  if (lines.empty()) throw InvalidInput(path + ": no polyline (l element) to cut along");
-  TriMesh out = mesh;
-  for (const auto& line : lines) {
-    std::vector<Vec3> pts = line.points;
-    for (Vec3& p : pts) p *= scale;
-    const GeodesicSource on_surface = source_from_polyline(out, pts);
-    std::vector<MeshPoint> path_points;
-    for (const auto& pl : on_surface.polylines) {
-      for (const SurfacePoint& p : pl)
-        path_points.push_back(MeshPoint::in_face(p.face, {p.bary[0], p.bary[1], p.bary[2]}));
-    }
-    const SplitMeshResult split = split_mesh_along_path(out, path_points);
-    const CutMeshResult cut = cut_mesh_along_path(split.mesh, split.path);
-    cut_edges += cut.num_cut_edges;
-    out = cut.mesh;
-  }
-  return out;
 }
 
 /// The stitch mesh as triangles with one colour per stitch (for viewing).
@@ -146,6 +140,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     int relax_iterations = -1;
     double bending = -1;
     double field_tolerance = -1;
+    double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false;
     DesignMachineOptions mach;
   };
@@ -163,26 +158,27 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                   "boundary:BEGIN,END[,LOOP] (arc-length fractions), boundary-vertices:I,J,..., vertex:I, "
                   "polyline:FILE.obj");
   cmd->add_option("--edge", o->edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--cut", o->cut, "Cut the surface open along the polylines of FILE.obj first");
+      ->check(positive_number());
+  add_cut_option(*cmd, o->cut);
   cmd->add_option("--diffusion", o->diffusion,
                   "Apex diffusion weight mu in mm (default 100 x stitch width; 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--diffusion-length", o->diffusion_length,
                   "Length (mm) the apex distance D is divided by in exp(-D^2) (default: the stitch width)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--lambda", o->lambda, "Initial bridge length limit in mm (default width + 2 x height)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-evaluate", o->no_evaluate, "Skip the relaxation and shape-error evaluation");
   cmd->add_option("--relax-iterations", o->relax_iterations,
                   "Shape-Up iterations of the evaluation's relaxation (default 60)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--field-tolerance", o->field_tolerance,
                   "Accuracy of the geodesic field as a fraction of the stitch width (default 1e-3; 0 = exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--bending", o->bending,
                   "Bending stiffness of the evaluation's rest shape, relative to the stitch shape (0 = none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
+  add_max_stitches_option(*cmd, o->max_stitches);
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
@@ -192,14 +188,15 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);
+      check_output_dir("-o", o->outdir, {o->input, o->cut});
       std::string description;
       Timer t;
-      TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
-      int cut_edges = 0;
-      if (!o->cut.empty()) surface = cut_surface(surface, o->cut, scale, cut_edges);
-      require_disk(surface, description);
+      std::vector<int> vertex_map;
+      const TriMesh input = load_design_surface(o->input, o->units, o->edge, description, nullptr, &vertex_map);
+      // ~2.5 kB per stitch measured (5 GB for 2 million at 0.1 x 0.1 mm).
+      check_surface_stitches(input, description, params, o->max_stitches, 2500.0);
       const double load_seconds = t.seconds();
-      const GeodesicSource source = parse_source(surface, o->source, scale);
+      const GeodesicSource source = parse_source(input, o->source, scale, vertex_map);
 
       ShortRowOptions opt;
       opt.params = params;
@@ -210,8 +207,18 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (o->relax_iterations > 0) opt.evaluation.relax.max_iterations = o->relax_iterations;
       if (o->bending >= 0) opt.evaluation.relax.bending = o->bending;
       if (o->field_tolerance >= 0) opt.field_tolerance = o->field_tolerance;
-      opt.progress = [](const std::string& stage) { note(stage + " ..."); };
-      const ShortRowDesign d = design_short_rows(surface, source, opt);
+      // Progress as the share of the route's stages begun (8, or 9 with the evaluation).
+      const int stages = opt.evaluate ? 9 : 8;
+      auto begun = std::make_shared<int>(0);
+      opt.progress = [stages, begun](const std::string& stage) {
+        note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / stages, stage));
+      };
+      if (!o->cut.empty()) opt.cuts = read_cuts(o->cut, scale);
+      opt.surface_name = description;
+      const ShortRowDesign d = design_short_rows(input, source, opt);
+      const TriMesh& surface = d.surface;
+      note_seams(d.seams, d.input_boundary_loops, d.input_genus,
+                 d.source_on_seam ? "; the source lies on a seam" : "");
 
       // Outputs.
       note("writing outputs ...");
@@ -247,6 +254,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         for (const auto& w : level) wales.push_back(w.points);
       }
       write_polylines_obj(out("wales.obj"), wales);
+      write_seams_obj(o->outdir, d.seams);
       if (!d.wales.cuts.empty()) {
         std::vector<std::vector<Vec3>> cuts;
         for (const auto& c : d.wales.cuts) cuts.push_back(c.path);
@@ -296,10 +304,18 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       double cut_length = 0;
       for (const auto& c : d.wales.cuts) cut_length += c.length;
       const double expected = d.surface_area / (params.stitch_width * params.stitch_height);
-      report["input"] = {
-          {"surface", description},       {"units", o->units},          {"vertices", surface.num_vertices()},
-          {"faces", surface.num_faces()}, {"area_mm2", d.surface_area}, {"source", source.description},
-          {"user_cut_edges", cut_edges}};
+      report["input"] = {{"surface", description},
+                         {"units", o->units},
+                         {"vertices", input.num_vertices()},
+                         {"faces", input.num_faces()},
+                         {"boundary_loops", d.input_boundary_loops},
+                         {"genus", d.input_genus},
+                         {"area_mm2", d.surface_area},
+                         {"source", d.source.description}};
+      report["seams"] = seams_json(d.seams);
+      report["seams"]["source_on_seam"] = d.source_on_seam;
+      report["seams"]["source_candidates"] = d.source_seam_candidates;
+      report["seams"]["designed_surface"] = {{"vertices", surface.num_vertices()}, {"faces", surface.num_faces()}};
       report["parameters"] = {
           {"stitch_width_mm", params.stitch_width},
           {"stitch_height_mm", params.stitch_height},
@@ -343,6 +359,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       report["knittable"] = d.map_check.ok() && d.mesh_check.ok() && machine_ok;
       second.get();  // rethrows what the second thread threw
       report["seconds"] = {{"load", load_seconds},
+                           {"seams", d.seconds.seams},
                            {"field", d.seconds.field},
                            {"wales", d.seconds.wales},
                            {"tessellation", d.seconds.tessellation},
@@ -375,6 +392,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         std::fprintf(stderr, "%s", r.text().c_str());
         note("the design is NOT knittable (details in report.json); outputs were written for inspection");
         int pieces = 1;
+        bool user_seams = false;
+        for (const Seam& seam : d.seams) user_seams = user_seams || seam.kind == SeamKind::User;
         try {
           StitchAdjacency(d.stitch_mesh).halfedges().face_components(&pieces);
         } catch (const Error&) {
@@ -385,8 +404,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
               "the stitches fall apart into {} separate pieces: the field has a ridge (a line of maxima "
               "where wales from two parts of the source meet, e.g. a plane that cuts the surface twice), "
               "which no course crosses; choose a source whose field rises to one side only, e.g. a "
-              "plane that cuts the surface once, or a part of the boundary",
-              pieces));
+              "plane that cuts the surface once, or a part of the boundary{}",
+              pieces,
+              user_seams ? "; or move the seams (--cut): the wales run from the source to the seams, so a seam "
+                           "much shorter than the source makes them meet before it (without --cut the seam "
+                           "between two rims follows the longest piece of the source that joins them)"
+                         : ""));
         } else if (!d.wales.cuts.empty() || d.unpaired_pieces > 0) {
           note(fmt::format(
               "the field needed {} cut(s) and has {} unpaired wale piece(s): where it branches the "

@@ -57,6 +57,9 @@ void add_simulate_command(CLI::App& app, Action& action) {
       SimulateOptions so;
       so.strict = parse_strict_rules(o->strict);
       if (!o->against.empty()) so.strict = all_rules_strict();
+      check_input_file(o->input);
+      if (!o->against.empty()) check_input_file(o->against);
+      if (!o->report.empty()) check_output_dir("--report", o->report, {o->input});
       const std::string text = read_text_file(o->input, "knitout program");
       const KnitoutFile file = parse_knitout(text);
       const KnitoutSimulation sim = simulate_knitout(file, profile, so);

@@ -30,18 +30,23 @@ struct Common {
   double edge = kDefaultShapeEdgeLength;
 };
 
+/// The output check of the three commands (before any work).
+void check_common(const Common& c) {
+  check_output_file("-o", c.output, {".stl", ".ply", ".obj", ".off"}, {c.input});
+}
+
 void add_common(CLI::App& cmd, Common& c, const std::string& output_help) {
   cmd.add_option("input", c.input, "Surface mesh (.obj/.ply/.off/.stl) or a built-in shape: " + shape_list())
       ->required();
   cmd.add_option("-o,--output", c.output, output_help)->required();
   cmd.add_option("--units", c.units, "Units of the input mesh: mm, cm, m (outputs are in mm)");
   cmd.add_option("--edge", c.edge, "Edge length (mm) of a built-in shape's triangulation")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 }
 
 std::string size_text(const TriMesh& mesh) {
   const Vec3 s = bounding_box(mesh).size();
-  return fmt::format("{} vertices, {} triangles, {:.1f} x {:.1f} x {:.1f} mm, volume {:.0f} mm^3",
+  return fmt::format("{} vertices, {} triangles, {:.5g} x {:.5g} x {:.5g} mm, volume {:.6g} mm^3",
                      mesh.num_vertices(), mesh.num_faces(), s.x(), s.y(), s.z(), enclosed_volume(mesh));
 }
 
@@ -66,19 +71,21 @@ void add_support_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl for printing; .ply/.obj/.off)");
   cmd->add_option("--offset", o->offset, "Inward offset of the surface: the fabric thickness (mm, default 1)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e6));
   cmd->add_option("--thickness", o->thickness,
                   "Make a hollow shell of this thickness (mm) instead of a solid with a base")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e6));
   cmd->add_option("--base-height", o->base_height,
                   "Height of the base below the lowest point of the surface (mm, default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number())
+      ->check(number_in(0, 1e6));
   cmd->add_option("--base", o->base, "Base: 'projected' (boundary projected down) or 'rectangle' (seed)")
       ->check(CLI::IsMember({"projected", "rectangle"}));
   cmd->add_option("--margin", o->margin, "Margin of the rectangle base around the surface (mm, default 5)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e6));
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       SupportOptions so;
@@ -102,7 +109,7 @@ void add_close_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "close", "Close a mesh into a watertight surface by alpha wrapping (the sock from a foot, seed 2.C.3)");
   struct Opts : Common {
-    double alpha = 0.0, offset = 0.0;
+    double alpha = 0.0, offset = 0.0, max_faces = 2e6;
     bool no_cap = false;
   };
   auto o = std::make_shared<Opts>();
@@ -110,20 +117,25 @@ void add_close_command(CLI::App& app, Action& action) {
   cmd->add_option("--alpha", o->alpha,
                   "Radius of the wrapping ball (mm): gaps narrower than about twice this are bridged "
                   "(default: bounding-box diagonal / 20)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e6));
   cmd->add_option("--offset", o->offset, "Distance of the result from the input (mm, default alpha / 30)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e6));
   cmd->add_flag(
       "--no-cap", o->no_cap,
       "Do not close the input's holes with planar caps first (an open input then gives a thin shell)");
+  cmd->add_option("--max-faces", o->max_faces,
+                  "Refuse when the result is estimated above this many triangles (default 2 million, ~5 min)")
+      ->check(positive_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh input = load_surface_or_shape(o->input, o->units, o->edge, description);
       AlphaCloseOptions ao;
       ao.alpha = o->alpha;
       ao.offset = o->offset;
       ao.cap_holes = !o->no_cap;
+      ao.max_faces = o->max_faces;
       note("wrapping ...");
       const AlphaCloseResult r = alpha_close(input, ao);
       write_mesh(o->output, r.mesh);
@@ -142,12 +154,16 @@ void add_thicken_command(CLI::App& app, Action& action) {
   };
   auto o = std::make_shared<Opts>();
   add_common(*cmd, *o, "Output solid (.stl, .ply, .obj, .off)");
-  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--thickness", o->thickness, "Thickness (mm)")
+      ->required()
+      ->check(positive_number())
+      ->check(number_in(0, 1e6));
   cmd->add_option("--side", o->side,
                   "Where the material goes: 'both' (centred), 'outside' (along the normals), 'inside'")
       ->check(CLI::IsMember({"both", "outside", "inside"}));
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      check_common(*o);
       std::string description;
       const TriMesh surface = load_surface_or_shape(o->input, o->units, o->edge, description);
       ThickenOptions to;

@@ -20,11 +20,11 @@ void add_yarn_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "Yarn polylines (.obj)")->required();
   add_stitch_option(*cmd, o->stitch);
   cmd->add_option("--radius", o->yarn.yarn_radius, "Yarn radius in mm (0 = 0.12 x stitch width)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->callback([=, &action] {
     action = [=]() -> int {
       const KnitParams params = parse_stitch_size(o->stitch);
-      if (extension(o->output) != ".obj") throw InvalidInput(o->output + ": the yarn model is written as .obj");
+      check_output_file("-o", o->output, {".obj"}, {o->input});
       const StitchInput in = load_stitch_input(o->input);
       const StitchMesh mesh = in.is_map ? map_to_stitch_mesh(in.map, params) : in.mesh;
       const YarnModel yarn = stitch_mesh_to_yarn(mesh, params, o->yarn);

@@ -420,16 +420,25 @@ TEST(PatternPointsToSurface, MapsThroughBarycentricCoordinates) {
   EXPECT_TRUE(p[2].isApprox(Vec3(10, 0, 5), 1e-12));  // outside: closest corner
 }
 
-TEST(DartHints, AutoDartsLowerTheDistortionOfADome) {
+TEST(DartHints, DomeDartLowersTheRmsButNotTheMaximumSoItIsNotKept) {
+  // On the hemisphere the proposed one-end dart lowers the RMS distortion
+  // (0.139 -> 0.093) but its tip raises the largest at stitch scale (0.31 ->
+  // 0.67): an automatic dart must lower both, so none is kept.
   const TriMesh m = hemisphere(60.0, 6.0);
   FlattenOptions opt;
   opt.enforce_dart_angle = false;
+  const Flattening plain = flatten_surface(m, {}, opt);
+  const auto hint = propose_dart(plain);
+  ASSERT_TRUE(hint.has_value());
+  EXPECT_EQ(hint->spec.type, DartType::OneEnd);
+  const Flattening with = flatten_surface(m, {hint->spec}, opt);
+  EXPECT_LT(with.stats.rms_log_sigma, 0.8 * plain.stats.rms_log_sigma);
+  EXPECT_GT(with.stitch_max_abs_log_sigma, plain.stitch_max_abs_log_sigma);
   const AutoDarts a = add_darts_automatically(m, {}, 3, opt);
-  ASSERT_GE(a.added.size(), 1u) << a.stop_reason;
+  EXPECT_TRUE(a.added.empty()) << a.stop_reason;
   ASSERT_EQ(a.rms_sequence.size(), a.added.size() + 1);
-  for (size_t i = 1; i < a.rms_sequence.size(); ++i) EXPECT_LT(a.rms_sequence[i], a.rms_sequence[i - 1]);
-  for (const auto& h : a.added) EXPECT_EQ(h.spec.type, DartType::OneEnd);
   EXPECT_EQ(a.flattening.darts.size(), a.darts.size());
+  EXPECT_NE(a.stop_reason.find("not the largest"), std::string::npos) << a.stop_reason;
 }
 
 TEST(DartHints, SaddleGetsATwoEndDart) {

@@ -321,5 +321,39 @@ TEST(DesignShortRows, SharedDataMeshesInCentimetres) {
   }
 }
 
+// The route cuts a surface that is not a disk itself (stage 0): the tube
+// with the plane x = 0 along one of the plane's two lines (the source is the
+// other, whose wales spread round to the seam), with a ring around it (the
+// seam opens the ring, whose wales then run once round), knittable both.
+TEST(ShortRowRoute, TubeIsCutAlongASeamAndKnits) {
+  const TriMesh tube = open_tube(30.0, 60.0, 3.0);
+  ShortRowOptions o;
+  o.params = {3.5, 2.8};
+  o.evaluate = false;
+  for (const GeodesicSource& source : {source_from_plane(tube, Vec3(1, 0, 0), 0.0), source_from_plane(tube, Vec3(0, 0, 1), 30.0)}) {
+    SCOPED_TRACE(source.description);
+    const ShortRowDesign d = design_short_rows(tube, source, o);
+    EXPECT_EQ(d.input_boundary_loops, 2);
+    ASSERT_EQ(d.seams.size(), 1u);
+    EXPECT_EQ(d.seams[0].kind, SeamKind::Loops);
+    EXPECT_NEAR(d.seams[0].length, 60.0, 0.1);
+    EXPECT_EQ(static_cast<int>(d.field.size()), d.surface.num_vertices());
+    EXPECT_GT(d.surface.num_vertices(), tube.num_vertices());  // the lips
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+    // Every stitch lies on the tube.
+    for (const Vec3& p : d.stitch_mesh.vertices) EXPECT_NEAR(std::hypot(p.x(), p.y()), 30.0, 1.5);
+    // About area / (sw sh): less by the strip beyond the last wale along a
+    // rim (60 mm of rings 3.5 mm apart: 4 mm).
+    const double area = 2 * std::numbers::pi * 30.0 * 60.0;
+    EXPECT_NEAR(d.stitch_mesh.num_stitches(), area / (3.5 * 2.8), 0.08 * area / (3.5 * 2.8));
+  }
+  // A disk is designed as it was: no seams, the same surface.
+  const TriMesh disk = flat_disk(30.0, 3.0);
+  const ShortRowDesign d = design_short_rows(disk, source_from_plane(disk, Vec3(1, 0, 0), 0.0), o);
+  EXPECT_TRUE(d.seams.empty());
+  EXPECT_EQ(d.surface.faces, disk.faces);
+}
+
 }  // namespace
 }  // namespace knitforge

@@ -47,7 +47,7 @@ TEST_F(Cli, InputErrorsExitOneWithOneLine) {
   EXPECT_FALSE(fs::exists(path("out.ply")));
 
   r = run("relax " + path("missing.csv") + " -o " + path("out.ply") + " --stitch 3x");
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);  // a malformed option value is a usage error
   EXPECT_NE(r.err.find("--stitch"), std::string::npos);
 
   std::ofstream(path("bad.csv")) << "course,dir,0,1\n1,<,K,Q\n0,>,K,K\n";

@@ -6,6 +6,9 @@
 #include "knitforge/convert/map_knittability.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/png_image.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/geometry/shapes.h"
+#include <cmath>
 
 using namespace knitforge;
 using namespace knitforge_e2e;
@@ -49,4 +52,35 @@ TEST_F(Cli, RenderWritesEachFormatAndReportRebuildsThePage) {
   EXPECT_TRUE(fs::exists(path("design/report.html")));
   fs::create_directories(path("empty"));
   EXPECT_EQ(run("report " + path("empty")).code, 1);
+}
+
+// The repro: a bumpy disk (two bumps and a dip, radius 80 mm) at
+// 3 x 2 mm with --auto-darts 3 folded the pattern (13 flipped triangles, max
+// log sigma 3.6) and reported success. Now: no fold, a bounded maximum, and
+// every kept dart lowers both the RMS and the maximum.
+TEST_F(Cli, FlattenBumpyDiskWithAutoDartsNeverFolds) {
+  TriMesh m = flat_disk(80.0, 4.0);
+  for (Vec3& p : m.vertices) {
+    auto g = [&](double cx, double cy, double a) {
+      return a * std::exp(-((p.x() - cx) * (p.x() - cx) + (p.y() - cy) * (p.y() - cy)) / (2 * 12.0 * 12.0));
+    };
+    p.z() = g(-35, 15, 30) + g(30, 25, 30) + g(5, -35, -30);
+  }
+  write_mesh(path("bumpy.obj"), m);
+  const std::string out = path("flat");
+  const CliRun r = run("flatten " + path("bumpy.obj") + " --stitch 3x2 --auto-darts 3 --no-evaluate -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rep = nlohmann::json::parse(slurp(out + "/report.json"));
+  const auto& f = rep["flattening"];
+  EXPECT_GT(f["arap_flipped_faces"].get<int>(), 0);  // ARAP alone folds this disk
+  EXPECT_TRUE(f["injective_solver"].get<bool>());
+  EXPECT_TRUE(f["flipped_faces"].empty());
+  EXPECT_EQ(f["distortion"]["flipped_faces"].get<int>(), 0);
+  EXPECT_LT(f["distortion"]["max_abs_log_sigma"].get<double>(), 1.5);
+  const auto& seq = f["distortion_sequence"];
+  for (size_t k = 2; k < seq.size(); ++k) {  // entry 0: no darts; 1..: after each kept dart
+    EXPECT_LT(seq[k]["rms_log_sigma"].get<double>(), seq[k - 1]["rms_log_sigma"].get<double>());
+    EXPECT_LT(seq[k]["max_abs_log_sigma"].get<double>(), seq[k - 1]["max_abs_log_sigma"].get<double>());
+  }
+  EXPECT_NE(r.err.find("automatic darts:"), std::string::npos);
 }

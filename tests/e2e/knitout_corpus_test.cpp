@@ -48,11 +48,16 @@ KnittingMap short_row_design(const TriMesh& m, const KnitParams& p, const Geodes
   return d.map;
 }
 
+// auto_darts > 0: that many automatic darts, each kept when it lowers the
+// RMS distortion (the dome's darts: --auto-darts-rms-only).
 KnittingMap flattened_design(const TriMesh& m, const KnitParams& p, int auto_darts) {
   FlattenOptions fo;
   fo.stitch_width = p.stitch_width;
   fo.stitch_height = p.stitch_height;
-  Flattening f = auto_darts > 0 ? add_darts_automatically(m, {}, auto_darts, fo).flattening : flatten_surface(m, {}, fo);
+  DartHintOptions ho;
+  ho.require_lower_maximum = false;
+  Flattening f =
+      auto_darts > 0 ? add_darts_automatically(m, {}, auto_darts, fo, ho).flattening : flatten_surface(m, {}, fo);
   KnitPatternOptions ko;
   ko.evaluate = false;
   const KnitPatternResult k = knit_flattened_pattern(f, m, p, ko);

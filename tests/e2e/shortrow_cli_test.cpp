@@ -55,20 +55,23 @@ TEST_F(Cli, ShortRowBadInputsExitOneAndWriteNothing) {
   r = run("shortrow no_such_file.obj -o " + out);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("no_such_file.obj"), std::string::npos) << r.err;
-  // A closed surface is not a disk: the message says how to cut it.
+  // A closed surface cannot be knitted as one piece: the message says to open it.
   TriMesh tet;
   tet.vertices = {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0), Vec3(0, 0, 10)};
   tet.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
   write_mesh(path("tet.obj"), tet);
   r = run("shortrow " + path("tet.obj") + " -o " + out);
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("cut"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is a closed surface"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("open it"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out + "/report.json"));
 }
 
-TEST_F(Cli, ShortRowCutsANonDiskOpenWhenGivenACut) {
-  // A flat annulus (radii 20 and 40 mm) is not a disk: the error says to cut
-  // it; with a radial cut from the inner to the outer rim it becomes one.
+TEST_F(Cli, ShortRowCutsANonDiskOpenItselfOrAlongTheUsersCut) {
+  // A flat annulus (radii 20 and 40 mm) is cut into a disk by the route
+  // itself: the plane y = 0 crosses it twice from rim to rim, so the seam
+  // follows one of those pieces; with a radial cut from the inner to the
+  // outer rim (drawn a little beyond both) that cut is the seam instead.
   TriMesh ring;
   const int n = 48, m = 6;
   for (int j = 0; j <= m; ++j) {
@@ -87,13 +90,22 @@ TEST_F(Cli, ShortRowCutsANonDiskOpenWhenGivenACut) {
   write_mesh(path("ring.obj"), ring);
   const std::string out = path("ring");
   CliRun r = run("shortrow " + path("ring.obj") + " --no-evaluate --source plane:0,1,0,0 -o " + out);
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("cut"), std::string::npos) << r.err;
-  write_polylines_obj(path("cut.obj"), {{Vec3(19.0, 0.0, 0.0), Vec3(30.0, 0.0, 0.0), Vec3(41.0, 0.0, 0.0)}});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/seams.obj"));
+  nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(report["input"]["boundary_loops"].get<int>(), 2);
+  ASSERT_EQ(report["seams"]["count"].get<int>(), 1);
+  EXPECT_EQ(report["seams"]["seams"][0]["kind"], "loops");
+  EXPECT_TRUE(report["seams"]["seams"][0]["on_source"].get<bool>());
+  EXPECT_NEAR(report["seams"]["length_mm"].get<double>(), 20.0, 0.1);  // the rims are 48-gons
+  EXPECT_TRUE(report["knittable"].get<bool>());
+  write_polylines_obj(path("cut.obj"), {{Vec3(0.0, 19.0, 0.0), Vec3(0.0, 30.0, 0.0), Vec3(0.0, 41.0, 0.0)}});
   r = run("shortrow " + path("ring.obj") + " --no-evaluate --source plane:0,1,0,0 --cut " + path("cut.obj") +
           " -o " + out);
-  EXPECT_NE(r.err.find("geodesic field"), std::string::npos) << r.err;  // got past the topology check
-  const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
-  EXPECT_GT(report["input"]["user_cut_edges"].get<int>(), 0);
+  EXPECT_NE(r.err.find("geodesic field"), std::string::npos) << r.err;  // got past the seams
+  report = nlohmann::json::parse(slurp(out + "/report.json"));
+  ASSERT_EQ(report["seams"]["count"].get<int>(), 1);
+  EXPECT_EQ(report["seams"]["seams"][0]["kind"], "user");
+  EXPECT_NEAR(report["seams"]["length_mm"].get<double>(), 20.0, 0.05);
   EXPECT_GT(report["counts"]["stitches"].get<int>(), 0);
 }

@@ -119,3 +119,26 @@ TEST(AlphaClose, ParameterValidationAndDefaults) {
   EXPECT_GT(res.volume, 8.0 / 3.0);
   EXPECT_LT(res.volume, 8.0 / 3.0 * 1.5);
 }
+
+namespace knitforge {
+namespace {
+
+TEST(AlphaClose, TooSmallAlphaIsRefusedBeforeWrapping) {
+  const TriMesh m = hemisphere(75.0, 8.0);
+  AlphaCloseOptions o;
+  o.alpha = 0.01;  // ~1 billion triangles
+  try {
+    alpha_close(m, o);
+    FAIL() << "no throw";
+  } catch (const InvalidInput& e) {
+    const std::string s = e.what();
+    EXPECT_NE(s.find("billion triangles"), std::string::npos) << s;
+    EXPECT_NE(s.find("limit of 2 million"), std::string::npos) << s;
+  }
+  o.alpha = 6.0;
+  o.max_faces = 100.0;  // the limit is the caller's
+  EXPECT_THROW(alpha_close(m, o), InvalidInput);
+}
+
+}  // namespace
+}  // namespace knitforge

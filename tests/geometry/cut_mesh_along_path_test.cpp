@@ -184,6 +184,34 @@ TEST(CutMeshAlongPath, PathAlongTheBoundaryCutsNothing) {
   EXPECT_EQ(r.right[0], -1);  // no face to the right of the boundary edge 0 -> 1
 }
 
+// Two radial paths of an annulus cut at once: the annulus falls into two
+// pieces (each a disk), as cutting one after the other would; left/right
+// list both paths' sides.
+TEST(CutMeshAlongPath, SeveralPathsAtOnce) {
+  const TriMesh ring = test::ring_grid(4, 24, false);
+  const int sectors = 24;
+  auto radial = [&](int s) {
+    std::vector<int> p;
+    for (int r = 0; r <= 4; ++r) p.push_back(r * sectors + s);
+    return p;
+  };
+  const CutMeshResult both = cut_mesh_along_paths(ring, {radial(0), radial(12)});
+  check_cut_basics(ring, both);
+  EXPECT_EQ(both.num_components, 2);
+  EXPECT_EQ(both.num_cut_edges, 8);  // every radial edge is interior
+  ASSERT_EQ(both.left.size(), 10u);
+  for (int c = 0; c < 2; ++c) EXPECT_TRUE(validate_surface(component(both, c)).is_disk);
+  const CutMeshResult first = cut_mesh_along_path(ring, radial(0));
+  EXPECT_EQ(first.num_components, 1);
+  EXPECT_TRUE(validate_surface(first.mesh).is_disk);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_NE(both.left[i], both.right[i]);
+    EXPECT_EQ(both.mesh.vertices[both.left[i]], both.mesh.vertices[both.right[i]]);
+  }
+  EXPECT_THROW(cut_mesh_along_paths(ring, {}), InvalidInput);
+  EXPECT_THROW(cut_mesh_along_paths(ring, {radial(0), {0}}), InvalidInput);
+}
+
 TEST(CutMeshAlongPath, RejectsBadPaths) {
   const TriMesh m = test::square_grid(2);
   EXPECT_THROW(cut_mesh_along_path(m, {4}), InvalidInput);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -146,6 +147,53 @@ TEST(GeodesicPath, DevelopableCylinderUnfoldedLength) {
   check_path(m, path);
   EXPECT_NEAR(path.length, std::hypot(13 * chord, 5 * height / nz), 1e-9 * r);
   EXPECT_GT(path.points.size(), 10u);  // it crosses many edges
+}
+
+// A path whose window reaches the boundary exactly at an end of its edge goes
+// on through that vertex (geodesic_propagation.cpp, trace_window_from): on
+// the built-in cap the shortest path from the ear (the vertex nearest
+// (-90, 0, 0) at edge 2.5) to the neck rim ends at such a vertex; the trace
+// once stopped there and returned the straight chord (77.1 mm instead of the
+// 79.7 mm of the field), whose two points share no face.
+TEST(GeodesicPath, ThroughTheVertexWhereAWindowEnds) {
+  const TriMesh m = cap(CapShape{}, 2.5);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  const GeodesicField f = geodesic_distance(m, source_from_boundary(m, 0.0, 1.0, 0));
+  const GeodesicField g = geodesic_distance(m, source_from_boundary(m, 0.0, 1.0, 1));
+  for (const Vec3& ear : {Vec3(-90, 0, 0), Vec3(90, 0, 0), Vec3(0, 90, 0), Vec3(0, 0, 90)}) {
+    int v = 0;
+    for (int u = 0; u < m.num_vertices(); ++u)
+      if ((m.vertices[u] - ear).norm() < (m.vertices[v] - ear).norm()) v = u;
+    const GeodesicPath path = geodesic_path_to_boundary(m, surface_point_at_vertex(m, v));
+    check_path(m, path);
+    EXPECT_NEAR(path.length, std::min(f.distance[v], g.distance[v]), 1e-6) << "from " << ear.transpose();
+    EXPECT_TRUE(on_boundary(m, he, path.points.back()));
+    EXPECT_GT(path.points.size(), 20u);
+  }
+}
+
+// The shortest path from a source to the nearest of some vertices: between
+// the two rims of the tube it runs straight up (the height), from a rim
+// point to a vertex of the other rim.
+TEST(GeodesicPath, FromSourceToNearestTarget) {
+  const TriMesh m = open_tube(20.0, 30.0, 2.0);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  const auto loops = he.boundary_loops();
+  ASSERT_EQ(loops.size(), 2u);
+  const GeodesicPath path = geodesic_path_from_source(m, source_from_boundary(m, 0.0, 1.0, 0), loops[1]);
+  check_path(m, path);
+  EXPECT_NEAR(path.length, 30.0, 0.001 * 30.0);  // straight up, bending where the faceted bands meet
+  EXPECT_TRUE(path.points.back().is_vertex());
+  EXPECT_NE(std::find(loops[1].begin(), loops[1].end(), path.points.back().v0), loops[1].end());
+  EXPECT_TRUE(on_boundary(m, he, path.points.front()));
+  // Unreachable targets, no targets.
+  TriMesh two = m;
+  const int n = two.num_vertices();
+  for (int v = 0; v < n; ++v) two.vertices.push_back(m.vertices[v] + Vec3(100, 0, 0));
+  for (auto t : m.faces) two.faces.push_back({t[0] + n, t[1] + n, t[2] + n});
+  EXPECT_THROW(geodesic_path_from_source(two, source_from_vertex(two, 0), {n + 1}), TopologyError);
+  EXPECT_THROW(geodesic_path_from_source(m, source_from_vertex(m, 0), {}), InvalidInput);
+  EXPECT_THROW(geodesic_path_from_source(m, source_from_vertex(m, 0), {m.num_vertices()}), InvalidInput);
 }
 
 TEST(GeodesicPath, ErrorCases) {

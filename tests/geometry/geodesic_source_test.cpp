@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "geometry/test_meshes.h"
 #include "knitforge/geometry/geodesic_distance.h"
@@ -76,6 +78,85 @@ TEST(GeodesicSource, BoundaryFractionsAndWrap) {
   EXPECT_THROW(source_from_boundary(m, 0.2, std::nan("")), InvalidInput);
   EXPECT_THROW(source_from_boundary(m, 0.2, 0.4, 1), InvalidInput);
   EXPECT_THROW(source_from_boundary(test::tetrahedron(), 0.2, 0.4), InvalidInput);  // no boundary loop
+}
+
+// Vertex paths: a row of grid vertices is the same source as the plane
+// through it (same field), signed with the left of the path positive; a
+// path that does not cross the surface is unsigned.
+TEST(GeodesicSource, VertexPaths) {
+  const TriMesh m = test::square_grid(6, 1.0);
+  std::vector<int> row;
+  for (int i = 0; i <= 6; ++i) row.push_back(2 * 7 + i);  // y = 2, walking towards +x
+  const GeodesicSource src = source_from_vertex_paths(m, {row}, "row y = 2");
+  EXPECT_EQ(src.description, "row y = 2");
+  ASSERT_EQ(src.vertex_side.size(), static_cast<size_t>(m.num_vertices()));
+  const GeodesicField f = geodesic_distance(m, src);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    EXPECT_NEAR(f.distance[v], m.vertices[v].y() - 2.0, 1e-12) << v;  // +y is left of +x (normal +z)
+    EXPECT_EQ(src.vertex_side[v], m.vertices[v].y() > 2.0 ? 1 : (m.vertices[v].y() < 2.0 ? -1 : 0));
+  }
+  EXPECT_EQ(source_sides(m, src), src.vertex_side);
+  const GeodesicSource part = source_from_vertex_paths(m, {{16, 17, 18}}, "part");
+  EXPECT_TRUE(part.vertex_side.empty());
+  const GeodesicSource point = source_from_vertex_paths(m, {{24}}, "point");
+  ASSERT_EQ(point.polylines.size(), 1u);
+  EXPECT_EQ(point.polylines[0].size(), 1u);
+  EXPECT_THROW(source_from_vertex_paths(m, {{0, 30}}, "gap"), InvalidInput);
+  EXPECT_THROW(source_from_vertex_paths(m, {{0, 99}}, "range"), InvalidInput);
+  EXPECT_THROW(source_from_vertex_paths(m, {{}}, "empty"), InvalidInput);
+}
+
+// A meridian of the hemisphere with any number of points is one polyline on
+// the meridian plane (the normal section), whose consecutive points share a
+// face; with 3 or 5 points one of them lies within 1e-14 of the pole and is
+// put exactly on that vertex. Before, every other point count failed
+// ("cannot be joined along the surface").
+TEST(GeodesicSource, PolylineJoinedAlongItsNormalSection) {
+  for (const double edge : {2.5, 10.0}) {
+    const TriMesh m = hemisphere(75.0, edge);
+    for (int n = 2; n <= 32; ++n) {
+      SCOPED_TRACE(::testing::Message() << n << " points, edge " << edge);
+      std::vector<Vec3> pts;
+      for (int i = 0; i < n; ++i) {
+        const double a = std::numbers::pi * i / (n - 1);
+        pts.emplace_back(0.0, 75.0 * std::cos(a), 75.0 * std::sin(a));
+      }
+      const GeodesicSource src = source_from_polyline(m, pts);
+      ASSERT_EQ(src.polylines.size(), 1u);
+      const auto& line = src.polylines[0];
+      EXPECT_GE(line.size(), static_cast<size_t>(n));
+      for (size_t i = 0; i < line.size(); ++i) {
+        if (n >= 3) {
+          EXPECT_NEAR(surface_point_position(m, line[i]).x(), 0.0, 1e-9) << i;
+        }
+        if (i > 0) {
+          // some face holds both points' supports
+          bool shared = false;
+          for (const auto& t : m.faces) {
+            bool all = true;
+            for (const SurfacePoint* p : {&line[i - 1], &line[i]})
+              for (int k = 0; k < 3; ++k)
+                if (p->bary[k] != 0.0) {
+                  const int v = m.faces[p->face][k];
+                  all = all && (t[0] == v || t[1] == v || t[2] == v);
+                }
+            if (all) {
+              shared = true;
+              break;
+            }
+          }
+          EXPECT_TRUE(shared) << "points " << i - 1 << ", " << i;
+        }
+      }
+      EXPECT_FALSE(src.vertex_side.empty());  // boundary to boundary: it cuts the hemisphere in two
+      EXPECT_NO_THROW(geodesic_distance(m, src));
+    }
+    // A point within 1e-14 of the pole (a vertex) is the vertex.
+    const GeodesicSource pole = source_from_polyline(m, {Vec3(0.0, 1e-14, 75.0)});
+    const SurfacePoint& p = pole.polylines[0][0];
+    EXPECT_EQ(surface_point_position(m, p), m.vertices[0]);
+    EXPECT_EQ((p.bary.array() == 1.0).count(), 1);
+  }
 }
 
 TEST(GeodesicSource, ErrorCases) {

@@ -251,13 +251,97 @@ TEST(Shapes, CylinderPatch) {
   EXPECT_TRUE(has_vertex(m, Vec3(r * std::cos(a / 2), r * std::sin(a / 2), h)));
 }
 
+// The open tube: staggered rings, every vertex on the cylinder, the rims
+// exact circles at z = 0 and z = h, outward normals, exactly mirror-
+// symmetric about x = 0, two boundary loops.
+TEST(Shapes, TubeIsAnOpenCylinder) {
+  const double r = 40.0, h = 100.0, edge = 4.0;
+  const TriMesh m = open_tube(r, h, edge);
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.issues.empty()) << rep.summary();
+  EXPECT_EQ(rep.num_boundary_loops, 2);
+  EXPECT_EQ(rep.genus, 0);
+  EXPECT_EQ(rep.num_components, 1);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    EXPECT_TRUE(near(std::hypot(p.x(), p.y()), r)) << v;
+    if (he.is_boundary_vertex(v)) {
+      EXPECT_TRUE(p.z() == 0.0 || p.z() == h) << v;
+    }
+    EXPECT_TRUE(has_vertex(m, Vec3(-p.x(), p.y(), p.z()))) << v;
+  }
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    EXPECT_GT(face_normal(m, f).dot(Vec3(c.x(), c.y(), 0.0)), 0.0);
+  }
+  const std::vector<double> lengths = edge_lengths(m);
+  const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
+  EXPECT_GT(*lo, 0.8 * edge);
+  EXPECT_LT(*hi, 1.3 * edge);
+  EXPECT_NEAR(total_area(m), 2 * kPi * r * h, 0.005 * 2 * kPi * r * h);
+  EXPECT_THROW(open_tube(40.0, 100.0, 0.0), InvalidInput);
+  EXPECT_THROW(open_tube(-1.0, 100.0, 4.0), InvalidInput);
+}
+
+// The cap: on the sphere, both rims on their exact circles (the face opening
+// within 35 degrees of -y, the neck within 40 degrees of -z), two loops,
+// area 2 pi r^2 (cos 35 + cos 40).
+TEST(Shapes, CapIsASphereWithTwoOpenings) {
+  const CapShape c;
+  const double edge = 5.0, r = c.radius;
+  const TriMesh m = cap(c, edge);
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.issues.empty()) << rep.summary();
+  EXPECT_EQ(rep.num_boundary_loops, 2);
+  EXPECT_EQ(rep.genus, 0);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  const Vec3 face(0, -1, 0), neck(0, 0, -1);
+  const double cf = std::cos(c.face_angle_deg * kPi / 180), cn = std::cos(c.neck_angle_deg * kPi / 180);
+  int on_face = 0, on_neck = 0;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    EXPECT_TRUE(near(p.norm(), r)) << v;
+    const Vec3 u = p / r;
+    EXPECT_LE(u.dot(face), cf + 1e-9);  // outside the openings
+    EXPECT_LE(u.dot(neck), cn + 1e-9);
+    if (he.is_boundary_vertex(v)) {
+      const bool f = std::abs(u.dot(face) - cf) < 1e-9, n = std::abs(u.dot(neck) - cn) < 1e-9;
+      EXPECT_TRUE(f || n) << v;
+      on_face += f;
+      on_neck += n;
+    }
+  }
+  EXPECT_NEAR(on_face, 2 * kPi * r * std::sin(c.face_angle_deg * kPi / 180) / edge, 0.15 * on_face);
+  EXPECT_NEAR(on_neck, 2 * kPi * r * std::sin(c.neck_angle_deg * kPi / 180) / edge, 0.15 * on_neck);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    EXPECT_GT(face_normal(m, f).dot(m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]), 0.0);
+  }
+  const double area = 2 * kPi * r * r * (cf + cn);
+  EXPECT_NEAR(total_area(m), area, 0.01 * area);
+  CapShape overlap;
+  overlap.face_angle_deg = 60.0;
+  overlap.neck_angle_deg = 50.0;
+  EXPECT_THROW(cap(overlap, 5.0), InvalidInput);
+  CapShape tiny;
+  tiny.face_angle_deg = 2.0;
+  EXPECT_THROW(cap(tiny, 5.0), InvalidInput);
+}
+
 TEST(Shapes, MakeShapeByNameIsDeterministic) {
   const auto names = shape_names();
-  ASSERT_EQ(names.size(), 6u);
+  ASSERT_EQ(names.size(), 8u);
   for (const auto& name : names) {
     const TriMesh a = make_shape(name, 8.0);
     const TriMesh b = make_shape(name, 8.0);
-    EXPECT_TRUE(validate_surface(a).is_disk) << name;
+    const SurfaceReport r = validate_surface(a);
+    if (name == "cap" || name == "tube") {
+      EXPECT_TRUE(r.ok() && r.num_boundary_loops == 2 && r.genus == 0) << name << ": " << r.summary();
+    } else {
+      EXPECT_TRUE(r.is_disk) << name;
+    }
     EXPECT_EQ(a.faces, b.faces) << name;
     ASSERT_EQ(a.vertices.size(), b.vertices.size()) << name;
     for (size_t v = 0; v < a.vertices.size(); ++v) ASSERT_EQ(a.vertices[v], b.vertices[v]) << name;

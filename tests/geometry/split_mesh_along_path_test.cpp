@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -237,6 +238,52 @@ TEST(SplitMeshAlongPath, ClosedIsocurveOnHemisphere) {
   EXPECT_EQ(r.path.front(), r.path.back());
   EXPECT_EQ(r.path.size(), path.size());
   for (int v : r.path) EXPECT_NEAR(r.mesh.vertices[v].z(), 12.0, 1e-9);
+}
+
+// Several paths at once (the pieces of a plane section): every piece becomes
+// a chain of mesh edges, and the split is the one the pieces would give one
+// after the other (same vertices, same area), with point names per path in
+// the messages.
+TEST(SplitMeshAlongPath, SeveralPathsAtOnce) {
+  const TriMesh m = monkey_saddle(6.0);
+  std::vector<double> z;
+  for (const Vec3& p : m.vertices) z.push_back(p.z());
+  const auto curves = extract_isocurve(m, z, 30.0);  // the three lobes' level set: several pieces
+  ASSERT_GE(curves.size(), 2u);
+  std::vector<std::vector<MeshPoint>> paths;
+  size_t points = 0;
+  for (const auto& c : curves) {
+    paths.push_back(points_of(c));
+    points += c.points.size();
+  }
+  const SplitMeshResult r = split_mesh_along_paths(m, paths);
+  ASSERT_EQ(r.paths.size(), paths.size());
+  EXPECT_EQ(r.path, r.paths[0]);
+  EXPECT_EQ(r.point_vertices.size(), points);
+  const auto edges = undirected_edges(r.mesh);
+  for (const auto& path : r.paths) {
+    ASSERT_GE(path.size(), 2u);
+    for (size_t i = 1; i < path.size(); ++i) EXPECT_TRUE(edges.count(std::minmax(path[i - 1], path[i])));
+    for (int v : path) EXPECT_NEAR(r.mesh.vertices[v].z(), 30.0, 1e-9);
+  }
+  for (const auto& path : r.paths) {
+    SplitMeshResult one = r;
+    one.path = path;
+    check_split(m, one);
+  }
+  // Consecutive points of different paths are not joined: a second path far
+  // from the first splits without complaint, while the same points as one
+  // path are rejected.
+  std::vector<MeshPoint> joined = paths[0];
+  joined.insert(joined.end(), paths[1].begin(), paths[1].end());
+  EXPECT_THROW(split_mesh_along_path(m, joined), InvalidInput);
+  std::vector<std::vector<MeshPoint>> bad = {paths[0], {paths[1][0], paths[0][0]}};
+  try {
+    split_mesh_along_paths(m, bad);
+    ADD_FAILURE() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("of path 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SplitMeshAlongPath, RejectsBadPaths) {

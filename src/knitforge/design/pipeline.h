@@ -9,6 +9,7 @@
 /// ## Short-row route (seed §3.2) — design/shortrow/
 ///
 ///   TriMesh surface (mm), GeodesicSource (geometry/geodesic_source.h)
+///   0. cut_to_disk()                 geometry/cut_to_disk.h         seams, when the surface is not a disk
 ///   1. geodesic_distance()           geometry/geodesic_distance.h   governing field F
 ///   2. compute_wale_curves()         shortrow/wale_curves.h         isocurves every sw, closed ones cut
 ///   3. tessellate_wales()            shortrow/tessellate_wales.h    strips, tessellate_strip() + apex diffusion
@@ -22,6 +23,7 @@
 /// ## Flattening with darts (seed ch. 2) — design/flatten/
 ///
 ///   TriMesh surface (mm), darts (DartSpec, flatten/dart.h; JSON in flatten/dart_json.h)
+///   0. cut_to_disk()                 geometry/cut_to_disk.h         seams, when the surface is not a disk (CLI)
 ///   1. cut_darts()                   flatten/dart.h                 split + cut along the dart paths
 ///   2. flatten_surface()             flatten/flatten_surface.h      Tutte start, ARAP with notch constraints
 ///      flattening_distortion()       flatten/flattening_distortion.h per-triangle singular values

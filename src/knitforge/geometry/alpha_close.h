@@ -34,6 +34,10 @@ struct AlphaCloseOptions {
   /// Close the boundary loops of an open (manifold) input mesh with planar
   /// centroid fans before wrapping, so the result is a solid.
   bool cap_holes = true;
+  /// Refuse, before wrapping, when the result would have more triangles
+  /// than this: about 2 x area / alpha² (measured on the hemisphere: 104k
+  /// triangles at alpha 1 mm in 17 s); the default 2 million is ~5 minutes.
+  double max_faces = 2e6;
 };
 
 /// A closed surface.
@@ -50,7 +54,9 @@ struct AlphaCloseResult {
 
 /// Wraps `input` (a triangle mesh; or, when it has no faces, the point set
 /// of its vertices) into a closed surface (see the file comment).
-/// \throw InvalidInput when alpha or offset is negative or not finite, the
+/// \throw InvalidInput when the estimated result exceeds max_faces (the
+///        message gives the estimate and the smallest alpha within the limit);
+///        when alpha or offset is negative or not finite, the
 ///        input has fewer than 4 points (or 1 face), a coordinate is not
 ///        finite, a face index is out of range, or the input has no extent.
 /// \throw SolverError when the wrap is not a closed manifold (not expected

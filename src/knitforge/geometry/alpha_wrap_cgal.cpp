@@ -13,6 +13,7 @@
 #include "knitforge/geometry/alpha_close.h"
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/work_limit.h"
 
 namespace knitforge {
 
@@ -96,6 +97,20 @@ AlphaCloseResult alpha_close(const TriMesh& input, const AlphaCloseOptions& opti
   if (!(diagonal > 0.0)) throw InvalidInput("alpha_close: the input has no extent (all points coincide)");
   result.alpha = options.alpha > 0.0 ? options.alpha : diagonal / 20.0;
   result.offset = options.offset > 0.0 ? options.offset : result.alpha / 30.0;
+  {
+    // The wrap's triangles scale with the wrapped area over alpha² (a point
+    // set: its bounding box's surface).
+    const Vec3 e = hi - lo;
+    double area = 0.0;
+    for (const auto& t : work.faces)
+      area += 0.5 * (work.vertices[t[1]] - work.vertices[t[0]]).cross(work.vertices[t[2]] - work.vertices[t[0]]).norm();
+    if (point_set || !(area > 0.0)) area = 2.0 * (e.x() * e.y() + e.y() * e.z() + e.z() * e.x());
+    const double faces = 2.0 * area / (result.alpha * result.alpha);
+    check_work({fmt::format("alpha_close: wrapping {:.4g} mm^2 with alpha {:.3g} mm", area, result.alpha), faces,
+                "triangles", options.max_faces, 1500.0,
+                fmt::format("use --alpha {:.3g} or larger (or raise the limit with --max-faces)",
+                            std::sqrt(2.0 * area / options.max_faces))});
+  }
 
   std::vector<Point3> points;
   points.reserve(work.vertices.size());

@@ -1,6 +1,7 @@
 #include "knitforge/geometry/cut_mesh_along_path.h"
 
 #include <algorithm>
+#include <string>
 
 #include <fmt/core.h>
 
@@ -10,18 +11,26 @@
 namespace knitforge {
 
 CutMeshResult cut_mesh_along_path(const TriMesh& mesh, const std::vector<int>& path) {
+  return cut_mesh_along_paths(mesh, {path});
+}
+
+CutMeshResult cut_mesh_along_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths) {
   const int nv = mesh.num_vertices();
-  const int np = static_cast<int>(path.size());
-  if (np < 2) {
-    throw InvalidInput(fmt::format("cut_mesh_along_path: the path has {} vertices; a cut needs at "
-                                   "least two",
-                                   np));
-  }
-  for (int i = 0; i < np; ++i) {
-    if (path[i] < 0 || path[i] >= nv) {
-      throw InvalidInput(fmt::format("cut_mesh_along_path: path vertex {} (position {}) is out of range; "
-                                     "the mesh has {} vertices",
-                                     path[i], i, nv));
+  if (paths.empty()) throw InvalidInput("cut_mesh_along_paths: no path to cut along");
+  for (size_t p = 0; p < paths.size(); ++p) {
+    const std::vector<int>& path = paths[p];
+    const int np = static_cast<int>(path.size());
+    const std::string which = paths.size() > 1 ? fmt::format(" {}", p) : "";
+    if (np < 2) {
+      throw InvalidInput(fmt::format("cut_mesh_along_path: the path{} has {} vertices; a cut needs at least two",
+                                     which, np));
+    }
+    for (int i = 0; i < np; ++i) {
+      if (path[i] < 0 || path[i] >= nv) {
+        throw InvalidInput(fmt::format("cut_mesh_along_path: path{} vertex {} (position {}) is out of range; "
+                                       "the mesh has {} vertices",
+                                       which, path[i], i, nv));
+      }
     }
   }
   const Halfedges he = build_halfedges(nv, mesh.faces);
@@ -45,23 +54,27 @@ CutMeshResult cut_mesh_along_path(const TriMesh& mesh, const std::vector<int>& p
 
   CutMeshResult out;
   std::vector<char> cut(he.num_edges(), 0);
-  for (int i = 0; i + 1 < np; ++i) {
-    const int a = path[i], b = path[i + 1];
-    if (a == b) {
-      throw InvalidInput(fmt::format("cut_mesh_along_path: path positions {} and {} are the same vertex "
-                                     "{}; remove the repetition",
-                                     i, i + 1, a));
-    }
-    const int hab = find_h(a, b), hba = find_h(b, a);
-    if (hab < 0 && hba < 0) {
-      throw InvalidInput(fmt::format("cut_mesh_along_path: path vertices {} and {} (positions {} and {}) "
-                                     "are not joined by a mesh edge; split the mesh along the path "
-                                     "first (split_mesh_along_path)",
-                                     a, b, i, i + 1));
-    }
-    if (hab >= 0 && hba >= 0 && !cut[he.edge(hab)]) {
-      cut[he.edge(hab)] = 1;
-      ++out.num_cut_edges;
+  for (size_t p = 0; p < paths.size(); ++p) {
+    const std::vector<int>& path = paths[p];
+    const std::string which = paths.size() > 1 ? fmt::format(" of path {}", p) : "";
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const int a = path[i], b = path[i + 1];
+      if (a == b) {
+        throw InvalidInput(fmt::format("cut_mesh_along_path: path positions {} and {}{} are the same vertex "
+                                       "{}; remove the repetition",
+                                       i, i + 1, which, a));
+      }
+      const int hab = find_h(a, b), hba = find_h(b, a);
+      if (hab < 0 && hba < 0) {
+        throw InvalidInput(fmt::format("cut_mesh_along_path: path vertices {} and {} (positions {} and {}{}) "
+                                       "are not joined by a mesh edge; split the mesh along the path "
+                                       "first (split_mesh_along_path)",
+                                       a, b, i, i + 1, which));
+      }
+      if (hab >= 0 && hba >= 0 && !cut[he.edge(hab)]) {
+        cut[he.edge(hab)] = 1;
+        ++out.num_cut_edges;
+      }
     }
   }
 
@@ -72,7 +85,8 @@ CutMeshResult cut_mesh_along_path(const TriMesh& mesh, const std::vector<int>& p
   out.vertex_origin.resize(nv);
   for (int v = 0; v < nv; ++v) out.vertex_origin[v] = v;
 
-  std::vector<int> verts(path);
+  std::vector<int> verts;
+  for (const auto& path : paths) verts.insert(verts.end(), path.begin(), path.end());
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   std::vector<int> hs;
@@ -114,19 +128,20 @@ CutMeshResult cut_mesh_along_path(const TriMesh& mesh, const std::vector<int>& p
   for (int f = 0; f < mesh.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) out.mesh.faces[f][k] = corner_vertex[3 * f + k];
 
-  // The two sides of the path.
-  out.left.assign(np, -1);
-  out.right.assign(np, -1);
+  // The two sides of the paths, path after path.
   auto corner_at = [&](int h, int v) {  // the corner of face(h) at vertex v (v an end of h)
     const int hh = he.from(h) == v ? h : he.next(h);
     return corner_vertex[3 * he.face(hh) + he.corner(hh)];
   };
-  for (int i = 0; i < np; ++i) {
-    const int a = i + 1 < np ? path[i] : path[i - 1];
-    const int b = i + 1 < np ? path[i + 1] : path[i];
-    const int hab = find_h(a, b), hba = find_h(b, a);
-    if (hab >= 0) out.left[i] = corner_at(hab, path[i]);
-    if (hba >= 0) out.right[i] = corner_at(hba, path[i]);
+  for (const auto& path : paths) {
+    const int np = static_cast<int>(path.size());
+    for (int i = 0; i < np; ++i) {
+      const int a = i + 1 < np ? path[i] : path[i - 1];
+      const int b = i + 1 < np ? path[i + 1] : path[i];
+      const int hab = find_h(a, b), hba = find_h(b, a);
+      out.left.push_back(hab >= 0 ? corner_at(hab, path[i]) : -1);
+      out.right.push_back(hba >= 0 ? corner_at(hba, path[i]) : -1);
+    }
   }
 
   // Components: faces joined by edges that were not cut.

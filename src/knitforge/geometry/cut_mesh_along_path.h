@@ -58,4 +58,13 @@ struct CutMeshResult {
 /// \throw TopologyError from build_halfedges() for a non-manifold mesh.
 CutMeshResult cut_mesh_along_path(const TriMesh& mesh, const std::vector<int>& path);
 
+/// Cuts `mesh` open along several vertex paths at once (the union of their
+/// edges: a cut graph, e.g. the seams of cut_to_disk.h); the same wedge
+/// rule as above. `left` and `right` list the sides of every path's
+/// vertices, path after path.
+/// \pre as cut_mesh_along_path().
+/// \throw as cut_mesh_along_path() (naming the path), InvalidInput when
+///        `paths` is empty.
+CutMeshResult cut_mesh_along_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths);
+
 }  // namespace knitforge

@@ -17,29 +17,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Seeds a propagation with every point and segment of the source.
-void seed_source(detail::GeodesicPropagation& prop, const TriMesh& mesh, const GeodesicSource& source) {
-  for (const auto& line : source.polylines) {
-    const size_t n = line.size();
-    if (n == 0) continue;
-    const bool closed =
-        n > 2 &&
-        (surface_point_position(mesh, line.front()) - surface_point_position(mesh, line.back())).norm() ==
-            0.0;
-    const size_t npts = closed ? n - 1 : n;
-    for (size_t i = 0; i < npts; ++i) {
-      std::vector<const SurfacePoint*> nb;
-      if (i > 0)
-        nb.push_back(&line[i - 1]);
-      else if (closed)
-        nb.push_back(&line[n - 2]);
-      if (i + 1 < n) nb.push_back(&line[i + 1]);
-      prop.add_point(line[i], nb);
-    }
-    for (size_t i = 0; i + 1 < n; ++i) prop.add_segment(line[i], line[i + 1]);
-  }
-}
-
 // A source point seen from one face that contains it.
 struct FacePoint {
   int line, index;  // polyline and position in it
@@ -214,7 +191,7 @@ struct RawField {
 
 RawField single_run(const detail::GeodesicGeometry& g, const GeodesicSource& source, double tolerance) {
   detail::GeodesicPropagation prop(g, false, tolerance);
-  seed_source(prop, *g.mesh, source);
+  prop.add_source(source);
   prop.run();
   return {prop.distance(), prop.num_windows(), false};
 }
@@ -249,8 +226,8 @@ bool split_run(const detail::GeodesicGeometry& g, const GeodesicSource& source, 
   detail::GeodesicPropagation pos(g, false, tolerance), neg(g, false, tolerance);
   pos.set_blocked(&blocked_pos);
   neg.set_blocked(&blocked_neg);
-  seed_source(pos, mesh, source);  // (throws for a bad source before any thread starts)
-  seed_source(neg, mesh, source);
+  pos.add_source(source);  // (throws for a bad source before any thread starts)
+  neg.add_source(source);
   bool threaded = false;
   if (std::thread::hardware_concurrency() > 1) {
     std::exception_ptr error;

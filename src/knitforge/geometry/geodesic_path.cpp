@@ -56,6 +56,29 @@ GeodesicPath geodesic_path_to_boundary(const TriMesh& mesh, const SurfacePoint& 
   return path;
 }
 
+GeodesicPath geodesic_path_from_source(const TriMesh& mesh, const GeodesicSource& source,
+                                       const std::vector<int>& targets) {
+  if (targets.empty()) throw InvalidInput("geodesic path: no target vertex given");
+  for (int v : targets)
+    if (v < 0 || v >= mesh.num_vertices())
+      throw InvalidInput(fmt::format("geodesic path: target vertex {} is out of range (the mesh has {} vertices)", v,
+                                     mesh.num_vertices()));
+  bool any = false;
+  for (const auto& line : source.polylines) any = any || !line.empty();
+  if (!any) throw InvalidInput("geodesic path: the source has no points");
+  const detail::GeodesicGeometry g = detail::build_geodesic_geometry(mesh);
+  detail::GeodesicPropagation prop(g);
+  prop.add_source(source);
+  prop.run();
+  int best = -1;
+  for (int v : targets)
+    if (std::isfinite(prop.distance()[v]) && (best < 0 || prop.distance()[v] < prop.distance()[best])) best = v;
+  if (best < 0)
+    throw TopologyError("geodesic path: no target vertex can be reached from the source; they are on different "
+                        "components of the surface");
+  return finish(prop.trace_vertex(best), true);
+}
+
 GeodesicPath geodesic_path(const TriMesh& mesh, const SurfacePoint& from, const SurfacePoint& to) {
   const detail::GeodesicGeometry g = detail::build_geodesic_geometry(mesh);
   check_point(mesh, from, "start");

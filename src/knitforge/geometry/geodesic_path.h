@@ -51,6 +51,17 @@ struct GeodesicPath {
 ///        (closed surface) or is not a valid manifold mesh.
 GeodesicPath geodesic_path_to_boundary(const TriMesh& mesh, const SurfacePoint& start);
 
+/// The shortest path on the surface from `source` (its polylines, as the
+/// geodesic field's source) to the nearest of the vertices `targets`
+/// (e.g. the vertices of the other boundary loops, for a seam between two
+/// loops): from a source point (first) to that target vertex (last). Ties
+/// go to the target listed first.
+/// \throw InvalidInput for an empty source or target list, an invalid
+///        source point or a target out of range; TopologyError when no
+///        target is reachable from the source.
+GeodesicPath geodesic_path_from_source(const TriMesh& mesh, const GeodesicSource& source,
+                                       const std::vector<int>& targets);
+
 /// The shortest path on the surface from `from` to `to`.
 /// \throw InvalidInput for an invalid surface point; TopologyError when `to`
 ///        is not reachable from `from` (different components).

@@ -415,10 +415,29 @@ double GeodesicPropagation::dominated_run(const IndexEntry& o, const IndexEntry&
       good = bad;
       continue;
     }
+    // The root of f between good (f <= 0) and bad (f > 0), f monotone there:
+    // regula falsi with the Illinois rule (superlinear where bisection needs
+    // ~30 steps for this tolerance), falling back to bisection when the
+    // secant stalls; the bracket keeps f(good) <= 0 < f(bad).
     const double stop = 1e-9 * (hi - lo);
-    for (int it = 0; it < 60 && std::abs(bad - good) > stop; ++it) {
-      const double mid = 0.5 * (good + bad);
-      (f(mid) <= 0.0 ? good : bad) = mid;
+    double fg = f(good), fb = f(bad);
+    int side = 0;
+    for (int it = 0; it < 100 && std::abs(bad - good) > stop; ++it) {
+      double x = fb - fg > 0.0 ? good - fg * (bad - good) / (fb - fg) : 0.5 * (good + bad);
+      const double margin = 0.01 * std::abs(bad - good);
+      if (!(std::abs(x - good) > margin && std::abs(bad - x) > margin)) x = 0.5 * (good + bad);
+      const double fx = f(x);
+      if (fx <= 0.0) {
+        good = x;
+        fg = fx;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        bad = x;
+        fb = fx;
+        if (side == 1) fg *= 0.5;
+        side = 1;
+      }
     }
     return good;
   }
@@ -864,6 +883,29 @@ void GeodesicPropagation::unpend(int h, int id) {
 
 void GeodesicPropagation::check_point(const SurfacePoint& sp) const { check_surface_point(*g_.mesh, sp); }
 
+void GeodesicPropagation::add_source(const GeodesicSource& source) {
+  const TriMesh& mesh = *g_.mesh;
+  for (const auto& line : source.polylines) {
+    const size_t n = line.size();
+    if (n == 0) continue;
+    const bool closed =
+        n > 2 &&
+        (surface_point_position(mesh, line.front()) - surface_point_position(mesh, line.back())).norm() ==
+            0.0;
+    const size_t npts = closed ? n - 1 : n;
+    for (size_t i = 0; i < npts; ++i) {
+      std::vector<const SurfacePoint*> nb;
+      if (i > 0)
+        nb.push_back(&line[i - 1]);
+      else if (closed)
+        nb.push_back(&line[n - 2]);
+      if (i + 1 < n) nb.push_back(&line[i + 1]);
+      add_point(line[i], nb);
+    }
+    for (size_t i = 0; i + 1 < n; ++i) add_segment(line[i], line[i + 1]);
+  }
+}
+
 void check_surface_point(const TriMesh& mesh, const SurfacePoint& sp) {
   if (sp.face < 0 || sp.face >= mesh.num_faces())
     throw InvalidInput(fmt::format("geodesic source: surface point in face {} but the mesh has {} faces",
@@ -1053,6 +1095,25 @@ GeodesicPathPoint vertex_point(const TriMesh& mesh, const Halfedges& he, const s
   return pt;
 }
 
+// True when some face holds the supports (vertices with a non-zero
+// barycentric coordinate) of both points.
+bool share_face(const TriMesh& mesh, const Halfedges& he, const std::vector<int>& out_start,
+                const std::vector<int>& out_he, const GeodesicPathPoint& a, const GeodesicPathPoint& b) {
+  std::array<int, 6> sup{};
+  int n = 0;
+  for (const GeodesicPathPoint* p : {&a, &b})
+    for (int k = 0; k < 3; ++k)
+      if (p->point.bary[k] != 0.0) sup[n++] = mesh.faces[p->point.face][k];
+  if (n == 0) return true;
+  for (int i = out_start[sup[0]]; i < out_start[sup[0] + 1]; ++i) {
+    const auto& t = mesh.faces[he.face(out_he[i])];
+    bool all = true;
+    for (int j = 0; j < n && all; ++j) all = t[0] == sup[j] || t[1] == sup[j] || t[2] == sup[j];
+    if (all) return true;
+  }
+  return false;
+}
+
 // Classifies a face point: vertex, edge point or interior.
 GeodesicPathPoint face_point(const TriMesh& mesh, int f, const Vec3& bary) {
   GeodesicPathPoint pt;
@@ -1114,12 +1175,25 @@ void GeodesicPropagation::trace_window_from(int wi, Vec2 x, std::vector<Geodesic
   double xc = window_xint(w0, x);
   if (!std::isfinite(xc)) xc = x.x();
   xc = std::clamp(xc, 0.0, g_.len[h]);
-  auto finish_root = [&](const Vec3& from3d) {
+  // The root is reached within rounding of face f (the face on the source
+  // side of the last crossing). When the root's point is not on f (it lies
+  // within rounding of a corner of f, in a face beyond it), the path goes
+  // through that corner, so that consecutive points still share a face.
+  auto push_root_point = [&](const GeodesicPathPoint& p, int f) {
+    if (!share_face(mesh, g_.he, g_.out_start, g_.out_he, out.back(), p)) {
+      int best = mesh.faces[f][0];
+      for (int v : mesh.faces[f])
+        if ((mesh.vertices[v] - p.position).squaredNorm() < (mesh.vertices[best] - p.position).squaredNorm()) best = v;
+      out.push_back(vertex_point(mesh, g_.he, g_.out_start, g_.out_he, best));
+    }
+    out.push_back(p);
+  };
+  auto finish_root = [&](const Vec3& from3d, int f) {
     if (w0.origin == Origin::Vertex) {
-      out.push_back(vertex_point(mesh, g_.he, g_.out_start, g_.out_he, w0.origin_id));
+      push_root_point(vertex_point(mesh, g_.he, g_.out_start, g_.out_he, w0.origin_id), f);
       trace_vertex_into(w0.origin_id, out);
     } else if (w0.origin == Origin::Seed) {
-      out.push_back(seed_point(w0.origin_id, from3d, w0.aux, line));
+      push_root_point(seed_point(w0.origin_id, from3d, w0.aux, line), f);
     }
   };
   const int max_steps = 4 * g_.he.num_halfedges() + 8;
@@ -1149,13 +1223,13 @@ void GeodesicPropagation::trace_window_from(int wi, Vec2 x, std::vector<Geodesic
       const double r = s.dot(X) + sigma;  // remaining distance
       const Vec2 foot = X - r * s;
       if (r <= 1e-12 * g_.scale || inside(foot)) {
-        finish_root(out.back().position);
+        finish_root(out.back().position, g_.he.face(g));
         return;
       }
       d = -s;
     } else {
       if (inside(s) || (s - X).norm() <= 1e-12 * g_.scale) {
-        finish_root(out.back().position);
+        finish_root(out.back().position, g_.he.face(g));
         return;
       }
       d = s - X;
@@ -1180,8 +1254,20 @@ void GeodesicPropagation::trace_window_from(int wi, Vec2 x, std::vector<Geodesic
         best_u = score;
       }
     }
-    if (best_e < 0) {  // numerically at the root already
-      finish_root(out.back().position);
+    if (best_e < 0) {
+      // The ray starts at a corner of g and leaves g at once: the crossing
+      // was at an end of the edge, and the path goes on through that vertex
+      // into another face around it. Continue from the vertex (its own
+      // distance is at most the window's there, so the path is as short).
+      const double tol = 1e-9 * L;
+      const int corner_vertex = L - xc <= tol ? g_.he.from(g) : (xc <= tol ? g_.he.to(g) : -1);
+      const double remaining = line ? s.dot(X) + sigma : (s - X).norm();
+      if (corner_vertex >= 0 && remaining > 1e-9 * g_.scale && dist_[corner_vertex] < kInf &&
+          vorigin_[corner_vertex] != Origin::None) {
+        trace_vertex_into(corner_vertex, out);
+        return;
+      }
+      finish_root(out.back().position, g_.he.face(g));  // numerically at the root already
       return;
     }
     const int e = best_e == 1 ? g_.he.next(g) : g_.he.prev(g);

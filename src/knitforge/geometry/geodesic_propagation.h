@@ -141,6 +141,12 @@ class GeodesicPropagation {
   /// restricted to the directions where p is the closest source point.
   void add_point(const SurfacePoint& p, const std::vector<const SurfacePoint*>& neighbours = {});
 
+  /// Adds every point and segment of the source's polylines (a closed
+  /// polyline, last point equal to the first, restricts its first point by
+  /// both neighbours), as geodesic_distance() seeds its propagation.
+  /// \throw as add_point() / add_segment().
+  void add_source(const GeodesicSource& source);
+
   /// Side-restricted propagation (geodesic_distance.h, "two sides"): no
   /// window is kept on a half-edge h with (*blocked)[h] != 0 and no vertex
   /// distance is relaxed along such a half-edge. `blocked` has one entry per

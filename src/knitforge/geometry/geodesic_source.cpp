@@ -5,12 +5,15 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <queue>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/chain_edges.h"
+#include "knitforge/geometry/geodesic_path.h"
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/util/errors.h"
@@ -64,50 +67,72 @@ double mesh_scale(const TriMesh& mesh) {
   return d > 0.0 ? d : 1.0;
 }
 
-// Chains undirected segments between nodes into polylines: open chains first
-// (starting at nodes of degree != 2, in node order), then cycles (closed by
-// repeating their first point). Nodes without a segment become point sources.
+// The segments between nodes chained into polylines (chain_edges.h): open
+// chains first, then cycles; nodes without a segment become point sources.
 std::vector<std::vector<SurfacePoint>> chain_segments(const std::vector<SurfacePoint>& node_point,
                                                       const std::vector<std::pair<int, int>>& segments) {
-  const int n = static_cast<int>(node_point.size());
-  std::vector<std::vector<int>> inc(n);
-  for (int s = 0; s < static_cast<int>(segments.size()); ++s) {
-    inc[segments[s].first].push_back(s);
-    inc[segments[s].second].push_back(s);
-  }
-  std::vector<char> used(segments.size(), 0);
   std::vector<std::vector<SurfacePoint>> out;
-  auto walk = [&](int start, int first_seg) {
-    std::vector<SurfacePoint> line{node_point[start]};
-    int node = start;
-    int seg = first_seg;
-    while (seg >= 0) {
-      used[seg] = 1;
-      node = segments[seg].first == node ? segments[seg].second : segments[seg].first;
-      line.push_back(node_point[node]);
-      seg = -1;
-      if (inc[node].size() == 2)
-        for (int s : inc[node])
-          if (!used[s]) seg = s;
-    }
-    out.push_back(std::move(line));
-  };
-  for (int v = 0; v < n; ++v) {
-    if (inc[v].empty()) out.push_back({node_point[v]});
-    if (inc[v].size() == 2) continue;
-    for (int s : inc[v])
-      if (!used[s]) walk(v, s);
+  for (const std::vector<int>& path : chain_edges(static_cast<int>(node_point.size()), segments, true)) {
+    out.emplace_back();
+    for (int n : path) out.back().push_back(node_point[n]);
   }
-  for (int s = 0; s < static_cast<int>(segments.size()); ++s)
-    if (!used[s]) walk(segments[s].first, s);
   return out;
 }
 
-// Per-vertex sides of a source on the surface, or empty when it does not cut
-// the surface into exactly two parts. `on_source`: vertices on the source;
-// `crossed`: edges (a < b) whose interior the source crosses. The side on
-// the left of the first non-degenerate segment (looking along the normal) is +1.
-std::vector<signed char> sides_from_cut(const TriMesh& mesh, const GeodesicSource& src) {
+// Ericson's closest point on a triangle, returning barycentric coordinates
+// with exact zeros on edges and vertices.
+Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0.0)) {  // degenerate triangle: best of the three edges
+    Vec3 best(1, 0, 0);
+    double bd = (p - a).squaredNorm();
+    const Vec3 pts[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& u = pts[k];
+      const Vec3& w = pts[(k + 1) % 3];
+      const double len2 = (w - u).squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((p - u).dot(w - u) / len2, 0.0, 1.0) : 0.0;
+      const double d = (p - (u + t * (w - u))).squaredNorm();
+      if (d < bd) {
+        bd = d;
+        best = Vec3::Zero();
+        best[k] = 1 - t;
+        best[(k + 1) % 3] = t;
+      }
+    }
+    return best;
+  }
+  const double v = vb / denom, w = vc / denom;
+  return {1 - v - w, v, w};
+}
+
+}  // namespace
+
+std::vector<signed char> source_sides(const TriMesh& mesh, const GeodesicSource& src) {
   const int nv = mesh.num_vertices();
   std::vector<char> on_source(nv, 0);
   std::map<std::pair<int, int>, char> crossed;
@@ -185,59 +210,6 @@ std::vector<signed char> sides_from_cut(const TriMesh& mesh, const GeodesicSourc
   }
   return {};
 }
-
-// Ericson's closest point on a triangle, returning barycentric coordinates
-// with exact zeros on edges and vertices.
-Vec3 closest_bary(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return {1, 0, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0.0)) {  // degenerate triangle: best of the three edges
-    Vec3 best(1, 0, 0);
-    double bd = (p - a).squaredNorm();
-    const Vec3 pts[3] = {a, b, c};
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& u = pts[k];
-      const Vec3& w = pts[(k + 1) % 3];
-      const double len2 = (w - u).squaredNorm();
-      const double t = len2 > 0.0 ? std::clamp((p - u).dot(w - u) / len2, 0.0, 1.0) : 0.0;
-      const double d = (p - (u + t * (w - u))).squaredNorm();
-      if (d < bd) {
-        bd = d;
-        best = Vec3::Zero();
-        best[k] = 1 - t;
-        best[(k + 1) % 3] = t;
-      }
-    }
-    return best;
-  }
-  const double v = vb / denom, w = vc / denom;
-  return {1 - v - w, v, w};
-}
-
-}  // namespace
 
 int GeodesicSource::num_segments() const {
   int n = 0;
@@ -504,6 +476,45 @@ GeodesicSource source_from_boundary_vertices(const TriMesh& mesh, const std::vec
   return src;
 }
 
+GeodesicSource source_from_vertex_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths,
+                                       const std::string& description) {
+  if (mesh.faces.empty()) throw InvalidInput("vertex path source: the mesh has no faces");
+  check_face_indices(mesh);
+  const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
+  GeodesicSource src;
+  src.description = description;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::vector<int>& path = paths[i];
+    if (path.empty()) continue;
+    for (int v : path) {
+      if (v < 0 || v >= mesh.num_vertices() || he.is_isolated_vertex(v))
+        throw InvalidInput(
+            fmt::format("vertex path source: path {} uses vertex {}, which is not a vertex of the surface", i, v));
+    }
+    std::vector<SurfacePoint> line;
+    if (path.size() == 1) {
+      line.push_back(surface_point_at_vertex(mesh, path[0]));
+    }
+    for (size_t k = 0; k + 1 < path.size(); ++k) {
+      const int a = path[k], b = path[k + 1];
+      // A face holding the edge a-b expresses both ends.
+      int face = -1;
+      for (int f : he.vertex_faces(a))
+        if (corner_of(mesh, f, b) >= 0) face = f;
+      if (face < 0 || a == b)
+        throw InvalidInput(fmt::format(
+            "vertex path source: vertices {} and {} (positions {} and {} of path {}) are not joined by an edge", a,
+            b, k, k + 1, i));
+      if (k == 0) line.push_back(point_in_face(mesh, face, a, a, 0.0));
+      line.push_back(point_in_face(mesh, face, b, b, 0.0));
+    }
+    src.polylines.push_back(std::move(line));
+  }
+  if (src.polylines.empty()) throw InvalidInput("vertex path source: no path has a vertex");
+  src.vertex_side = source_sides(mesh, src);
+  return src;
+}
+
 GeodesicSource source_from_vertex(const TriMesh& mesh, int v) {
   GeodesicSource src;
   src.polylines.push_back({surface_point_at_vertex(mesh, v)});
@@ -513,104 +524,201 @@ GeodesicSource source_from_vertex(const TriMesh& mesh, int v) {
 
 namespace {
 
-// Walks the normal section from p to q (see source_from_polyline) and appends
-// the points after p (ending with q) to `line`. Returns false when it fails.
-bool join_on_surface(const TriMesh& mesh, const Halfedges& he, const std::vector<Vec3>& fn,
-                     const SurfacePoint& p, const SurfacePoint& q, std::vector<SurfacePoint>& line) {
+// The vertices with a non-zero barycentric coordinate of p.
+std::vector<int> support_of(const TriMesh& mesh, const SurfacePoint& p) {
+  std::vector<int> vs;
+  for (int k = 0; k < 3; ++k)
+    if (p.bary[k] != 0.0) vs.push_back(mesh.faces[p.face][k]);
+  return vs;
+}
+
+// The faces that contain p (around its support).
+std::vector<int> faces_containing(const TriMesh& mesh, const Halfedges& he, const SurfacePoint& p) {
+  const std::vector<int> vs = support_of(mesh, p);
+  if (vs.size() == 3) return {p.face};
+  std::vector<int> out;
+  for (int f : he.vertex_faces(vs[0])) {
+    bool all = true;
+    for (int v : vs) all = all && corner_of(mesh, f, v) >= 0;
+    if (all) out.push_back(f);
+  }
+  return out;
+}
+
+// p expressed in face f (which contains it), with its exact zeros.
+SurfacePoint in_face(const TriMesh& mesh, const SurfacePoint& p, int f) {
+  SurfacePoint q;
+  q.face = f;
+  q.bary = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    if (p.bary[k] != 0.0) q.bary[corner_of(mesh, f, mesh.faces[p.face][k])] = p.bary[k];
+  return q;
+}
+
+// Joins p to q along the normal section (see source_from_polyline): the
+// intersection of the surface with the plane through both points that
+// contains their mean normal, searched as a graph (the plane's crossings of
+// the edges and vertices of the faces it cuts, near the two points) for the
+// shortest way along it from p to q. Appends the points after p (ending
+// with q) to `line`; false when the section does not join them nearby.
+bool join_along_section(const TriMesh& mesh, const Halfedges& he, const std::vector<Vec3>& fn, double mean_edge,
+                        const SurfacePoint& p, const SurfacePoint& q, std::vector<SurfacePoint>& line) {
   const Vec3 P = surface_point_position(mesh, p), Q = surface_point_position(mesh, q);
   const Vec3 dir = Q - P;
-  if (dir.norm() == 0.0) return true;
-  auto support = [&](const SurfacePoint& s) {  // vertices with non-zero coordinate
-    std::vector<int> vs;
-    for (int k = 0; k < 3; ++k)
-      if (s.bary[k] != 0.0) vs.push_back(mesh.faces[s.face][k]);
-    return vs;
+  const double len = dir.norm();
+  const std::vector<int> pf = faces_containing(mesh, he, p), qf = faces_containing(mesh, he, q);
+  // The surface normal at a point: the mean over the faces that contain it
+  // (so that a point on an edge or at a vertex sees both sides alike).
+  auto normal_at = [&](const std::vector<int>& faces) {
+    Vec3 n = Vec3::Zero();
+    for (int f : faces) n += fn[f];
+    return n.norm() > 0.0 ? Vec3(n.normalized()) : n;
   };
-  auto face_contains = [&](int f, const std::vector<int>& vs) {
-    for (int v : vs)
-      if (corner_of(mesh, f, v) < 0) return false;
-    return true;
-  };
-  // Faces containing a point: the faces around its support.
-  auto faces_of = [&](const std::vector<int>& vs, int hint) {
-    std::vector<int> fs;
-    if (vs.size() == 3) return std::vector<int>{hint};
-    for (int f : he.vertex_faces(vs[0]))
-      if (face_contains(f, vs)) fs.push_back(f);
-    return fs;
-  };
-  const std::vector<int> qs = support(q);
-  const std::vector<int> qfaces = faces_of(qs, q.face);
-  auto contains_q = [&](int f) { return std::find(qfaces.begin(), qfaces.end(), f) != qfaces.end(); };
-
-  Vec3 nav = fn[p.face] + fn[q.face];
+  Vec3 nav = normal_at(pf) + normal_at(qf);
   Vec3 m = dir.cross(nav);
-  if (m.norm() <= 1e-12 * dir.norm() * std::max(nav.norm(), 1e-300)) m = dir.cross(fn[p.face]);
-  if (!(m.norm() > 0.0)) return false;
+  if (m.norm() <= 1e-9 * len * std::max(nav.norm(), 1e-300)) return false;  // no plane: the normals are along PQ
   m.normalize();
-  const double scale = dir.norm();
   auto phi = [&](int v) {
     const double x = m.dot(mesh.vertices[v] - P);
-    return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
+    return std::abs(x) <= 1e-12 * len ? 0.0 : x;
   };
-  auto progress = [&](const Vec3& x) { return dir.dot(x - P); };
-
-  std::vector<int> cur = support(p);
-  int cur_face = p.face;
-  double cur_prog = 0.0;
-  const int max_steps = 4 * mesh.num_faces() + 8;
-  for (int step = 0; step < max_steps; ++step) {
-    const std::vector<int> faces = faces_of(cur, cur_face);
-    for (int f : faces)
-      if (contains_q(f)) {
-        line.push_back(q);
-        line.back().face = f;
-        line.back().bary = Vec3::Zero();
-        // Re-express q in face f.
-        const SurfacePoint& qq = q;
-        for (int k = 0; k < 3; ++k)
-          if (qq.bary[k] != 0.0) line.back().bary[corner_of(mesh, f, mesh.faces[qq.face][k])] = qq.bary[k];
-        return true;
-      }
-    // Candidate next points: the other end of the zero segment of phi in each face.
-    double best_prog = cur_prog;
-    SurfacePoint best;
-    std::vector<int> best_support;
-    for (int f : faces) {
-      const auto& t = mesh.faces[f];
-      for (int k = 0; k < 3; ++k) {
-        const int a = t[k], b = t[(k + 1) % 3];
-        const double pa = phi(a), pb = phi(b);
-        std::vector<int> sup;
-        SurfacePoint sp;
-        if (pa == 0.0) {
-          sup = {a};
-          sp = point_in_face(mesh, f, a, a, 0.0);
-        } else if ((pa < 0.0 && pb > 0.0) || (pa > 0.0 && pb < 0.0)) {
-          const int lo = std::min(a, b), hi = std::max(a, b);
-          sup = {lo, hi};
-          sp = point_in_face(mesh, f, lo, hi, phi(lo) / (phi(lo) - phi(hi)));
-        } else {
-          continue;
-        }
-        std::vector<int> sorted_cur = cur;
-        std::sort(sorted_cur.begin(), sorted_cur.end());
-        if (sup == sorted_cur) continue;
-        const double pr = progress(surface_point_position(mesh, sp));
-        if (pr > best_prog + 1e-12 * scale) {
-          best_prog = pr;
-          best = sp;
-          best_support = sup;
-        }
+  const Vec3 mid = 0.5 * (P + Q);
+  const double reach = 0.75 * len + 3.0 * mean_edge;  // faces farther from the midpoint are not searched
+  // Nodes: a vertex on the plane (a == b) or an edge crossing (a < b); then p and q.
+  std::map<NodeKey, int> id;
+  std::vector<SurfacePoint> point;
+  std::vector<Vec3> pos;
+  auto node = [&](int f, int a, int b) {
+    NodeKey k{std::min(a, b), std::max(a, b)};
+    if (const auto it = id.find(k); it != id.end()) return it->second;
+    const double t = k.a == k.b ? 0.0 : phi(k.a) / (phi(k.a) - phi(k.b));
+    point.push_back(point_in_face(mesh, f, k.a, k.b, t));
+    pos.push_back(surface_point_position(mesh, point.back()));
+    id.emplace(k, static_cast<int>(point.size()) - 1);
+    return static_cast<int>(point.size()) - 1;
+  };
+  std::vector<std::vector<std::pair<int, double>>> adj;
+  auto link = [&](int i, int j) {
+    if (adj.size() < point.size()) adj.resize(point.size());
+    const double w = (pos[i] - pos[j]).norm();
+    adj[i].push_back({j, w});
+    adj[j].push_back({i, w});
+  };
+  // Flood the faces the plane cuts, from p's faces.
+  std::vector<char> seen(mesh.num_faces(), 0);
+  std::vector<int> stack = pf;
+  for (int f : pf) seen[f] = 1;
+  std::map<int, std::vector<int>> face_nodes;
+  while (!stack.empty()) {
+    const int f = stack.back();
+    stack.pop_back();
+    const auto& t = mesh.faces[f];
+    std::vector<int> nodes;
+    int zeros = 0;
+    for (int k = 0; k < 3; ++k) zeros += phi(t[k]) == 0.0 ? 1 : 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      const double pa = phi(a), pb = phi(b);
+      if (pa == 0.0) nodes.push_back(node(f, a, a));
+      if ((pa < 0.0 && pb > 0.0) || (pa > 0.0 && pb < 0.0)) nodes.push_back(node(f, a, b));
+    }
+    if (nodes.size() < 2 && zeros < 3) continue;  // the plane only touches the face (or misses it)
+    face_nodes[f] = nodes;
+    for (size_t i = 0; i < nodes.size(); ++i)
+      for (size_t j = i + 1; j < nodes.size(); ++j) link(nodes[i], nodes[j]);
+    for (int k = 0; k < 3; ++k) {
+      const int g = he.neighbor(f, k);
+      if (g < 0 || seen[g]) continue;
+      const auto& u = mesh.faces[g];
+      const Vec3 c = (mesh.vertices[u[0]] + mesh.vertices[u[1]] + mesh.vertices[u[2]]) / 3.0;
+      if ((c - mid).norm() > reach) continue;
+      seen[g] = 1;
+      stack.push_back(g);
+    }
+    // Faces that share only a vertex on the plane with f.
+    for (int k = 0; k < 3; ++k) {
+      if (phi(t[k]) != 0.0) continue;
+      for (int g : he.vertex_faces(t[k])) {
+        if (seen[g]) continue;
+        seen[g] = 1;
+        stack.push_back(g);
       }
     }
-    if (best_support.empty() || best_prog > dir.squaredNorm() * (1.0 + 1e-9) + 1e-9 * scale) return false;
-    line.push_back(best);
-    cur = best_support;
-    cur_face = best.face;
-    cur_prog = best_prog;
   }
-  return false;
+  // p and q join the section in the faces that contain them.
+  const int ip = static_cast<int>(point.size());
+  point.push_back(p);
+  pos.push_back(P);
+  const int iq = static_cast<int>(point.size());
+  point.push_back(q);
+  pos.push_back(Q);
+  adj.resize(point.size());
+  for (int f : pf)
+    if (const auto it = face_nodes.find(f); it != face_nodes.end())
+      for (int n : it->second) link(ip, n);
+  for (int f : qf)
+    if (const auto it = face_nodes.find(f); it != face_nodes.end())
+      for (int n : it->second) link(iq, n);
+  // Dijkstra from p to q.
+  std::vector<double> dist(point.size(), std::numeric_limits<double>::infinity());
+  std::vector<int> prev(point.size(), -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  dist[ip] = 0.0;
+  queue.push({0.0, ip});
+  while (!queue.empty()) {
+    const auto [d, i] = queue.top();
+    queue.pop();
+    if (d > dist[i]) continue;
+    if (i == iq) break;
+    for (const auto& [j, w] : adj[i]) {
+      if (d + w < dist[j]) {
+        dist[j] = d + w;
+        prev[j] = i;
+        queue.push({d + w, j});
+      }
+    }
+  }
+  if (!std::isfinite(dist[iq]) || dist[iq] > 3.0 * len + 1e-9) return false;
+  std::vector<int> chain;
+  for (int i = iq; i != ip; i = prev[i]) chain.push_back(i);
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) line.push_back(point[*it]);
+  return true;
+}
+
+// Joins p to q on the surface: directly when they share a face, else along
+// the normal section, else (the section leaves the surface or folds back)
+// along the shortest path between them. False when no path joins them.
+bool join_on_surface(const TriMesh& mesh, const Halfedges& he, const std::vector<Vec3>& fn, double mean_edge,
+                     const SurfacePoint& p, const SurfacePoint& q, std::vector<SurfacePoint>& line) {
+  if ((surface_point_position(mesh, q) - surface_point_position(mesh, p)).norm() == 0.0) return true;
+  const std::vector<int> pf = faces_containing(mesh, he, p);
+  for (int f : faces_containing(mesh, he, q)) {
+    if (std::find(pf.begin(), pf.end(), f) != pf.end()) {
+      line.push_back(in_face(mesh, q, f));
+      return true;
+    }
+  }
+  if (join_along_section(mesh, he, fn, mean_edge, p, q, line)) return true;
+  try {
+    const GeodesicPath path = geodesic_path(mesh, p, q);
+    for (size_t i = 1; i < path.points.size(); ++i) line.push_back(path.points[i].point);
+    return true;
+  } catch (const TopologyError&) {
+    return false;
+  }
+}
+
+// Near-degenerate projections: a barycentric coordinate below 1e-9 is a
+// point on the opposite edge (or at a vertex), exactly.
+SurfacePoint snap_to_edges(SurfacePoint p) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    if (p.bary[k] < 1e-9) p.bary[k] = 0.0;
+    sum += p.bary[k];
+  }
+  p.bary /= sum;
+  return p;
 }
 
 }  // namespace
@@ -623,21 +731,27 @@ GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>
     if (!points[i].allFinite()) throw InvalidInput(fmt::format("polyline source: point {} is not finite", i));
   const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
   const std::vector<Vec3> fn = face_normals(mesh);
+  const double mean_edge = edge_length_stats(mesh).mean;
   std::vector<SurfacePoint> proj;
-  for (const Vec3& p : points) proj.push_back(closest_surface_point(mesh, p));
+  for (const Vec3& p : points) proj.push_back(snap_to_edges(closest_surface_point(mesh, p)));
   std::vector<SurfacePoint> line{proj[0]};
   for (size_t i = 0; i + 1 < proj.size(); ++i) {
-    if (!join_on_surface(mesh, he, fn, proj[i], proj[i + 1], line))
+    if (!join_on_surface(mesh, he, fn, mean_edge, line.back(), proj[i + 1], line))
       throw InvalidInput(fmt::format(
-          "polyline source: points {} and {} cannot be joined along the surface (their normal section "
-          "leaves the surface or turns back); add intermediate points or check that both are on the same "
-          "part",
+          "polyline source: points {} and {} lie on different parts of the surface (no path on it joins them); "
+          "move them onto one part",
           i, i + 1));
   }
+  // Drop repeated points (a polyline point that falls on the previous one).
+  std::vector<SurfacePoint> clean;
+  for (const SurfacePoint& p : line)
+    if (clean.empty() ||
+        (surface_point_position(mesh, p) - surface_point_position(mesh, clean.back())).norm() > 0.0)
+      clean.push_back(p);
   GeodesicSource src;
-  src.polylines.push_back(std::move(line));
+  src.polylines.push_back(std::move(clean));
   src.description = fmt::format("polyline of {} points", points.size());
-  src.vertex_side = sides_from_cut(mesh, src);
+  src.vertex_side = source_sides(mesh, src);
   return src;
 }
 

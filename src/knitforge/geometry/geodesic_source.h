@@ -112,22 +112,47 @@ GeodesicSource source_from_boundary_vertices(const TriMesh& mesh, const std::vec
 /// \throw InvalidInput when v is out of range or used by no face.
 GeodesicSource source_from_vertex(const TriMesh& mesh, int v);
 
+/// Paths of mesh vertices (consecutive vertices joined by a mesh edge; a
+/// path of one vertex is a point source), e.g. a source carried over to a
+/// surface that was cut open (cut_to_disk.h). Signed when the paths cut
+/// the surface into exactly two parts (source_sides()).
+/// \throw InvalidInput when a vertex is out of range or used by no face,
+///        two consecutive vertices are not joined by an edge, or no path
+///        has a vertex; TopologyError from build_halfedges().
+GeodesicSource source_from_vertex_paths(const TriMesh& mesh, const std::vector<std::vector<int>>& paths,
+                                       const std::string& description);
+
+/// The per-vertex sides of a source (GeodesicSource::vertex_side) when its
+/// polylines cut the surface into exactly two parts (the vertices used by
+/// faces, minus those on the source, fall into two components across edges
+/// the source neither ends on nor crosses); empty otherwise. The part on the
+/// left of the first segment of positive length (looking along the face
+/// normal) is +1, vertices on the source are 0.
+/// \pre the source points are valid for `mesh`.
+std::vector<signed char> source_sides(const TriMesh& mesh, const GeodesicSource& source);
+
 /// A 3D polyline projected onto the surface: every point goes to its closest
-/// surface point; consecutive projected points are joined along the surface by
-/// the intersection of the surface with the plane through both points that
-/// contains their mean surface normal (a normal section, which is the straight
-/// segment on a flat part), walked face by face. Consecutive points should be
-/// close compared with the surface's curvature radius (a few stitch widths).
-/// The polyline is closed when its last point equals its first.
+/// surface point (a barycentric coordinate below 1e-9 is snapped to zero, so
+/// a point within rounding of an edge or a vertex lies on it exactly);
+/// consecutive projected points are joined along the surface by the
+/// intersection of the surface with the plane through both points that
+/// contains their mean surface normal (a normal section, which is the
+/// straight segment on a flat part), taken as the shortest way along that
+/// section between them among the faces near them; where the section does
+/// not join them there (it leaves the surface through the boundary, or the
+/// normals are parallel to the segment), by the shortest path on the surface
+/// (geodesic_path()). Consecutive points should be close compared with the
+/// surface's curvature radius (a few stitch widths) for the normal section
+/// to be what is meant. Repeated points are dropped. The polyline is closed
+/// when its last point equals its first.
 ///
 /// Side: when the projected polyline is closed or starts and ends on the
 /// boundary and cuts the surface into exactly two parts, vertex_side is set:
 /// positive on the left of the polyline direction (looking along the surface
 /// normal, i.e. the side n × t points to, t the tangent); otherwise unsigned.
 /// \throw InvalidInput when `points` is empty or has a non-finite point, or
-///        two consecutive points cannot be joined on the surface (the message
-///        names the pair: e.g. they are on different components, or the
-///        normal section leaves the surface through its boundary first).
+///        two consecutive points lie on different parts of the surface (the
+///        message names the pair).
 GeodesicSource source_from_polyline(const TriMesh& mesh, const std::vector<Vec3>& points);
 
 }  // namespace knitforge

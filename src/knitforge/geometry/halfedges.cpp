@@ -86,7 +86,8 @@ Halfedges build_halfedges(int num_vertices, std::span<const int> face_start,
     const int h0 = keys[i].second;
     if (j - i > 2) {
       std::string faces;
-      for (int k = i; k < j; ++k) faces += fmt::format("{}{}", k > i ? ", " : "", m.face_[keys[k].second]);
+      for (int k = i; k < j && k < i + 8; ++k) faces += fmt::format("{}{}", k > i ? ", " : "", m.face_[keys[k].second]);
+      if (j - i > 8) faces += fmt::format(" and {} more", j - i - 8);
       throw TopologyError(fmt::format(
           "edge ({}, {}) is shared by {} faces ({}); a manifold mesh has at most 2 per edge",
           m.from_[h0], m.to_[h0], j - i, faces));

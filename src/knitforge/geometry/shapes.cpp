@@ -265,6 +265,63 @@ TriMesh hemisphere_rings(double r, double edge) {
   return m;
 }
 
+// Ring of n vertices at height z on the circle of radius r: odd rings
+// (k % 2 == 1) with a vertex at longitude 90° (the +y axis), even ones turned
+// by half a spacing, so that the ring is mirror-symmetric about x = 0 (the
+// mirror image of vertex j is vertex n - j, resp. n - 1 - j, copied with x
+// negated so that the symmetry is exact).
+void add_symmetric_ring(TriMesh& m, int k, int n, double r, double z) {
+  const int start = m.num_vertices();
+  const bool odd = k % 2 == 1;
+  for (int j = 0; j < n; ++j) {
+    const int mirror = odd ? (n - j) % n : n - 1 - j;
+    if (mirror < j) {
+      const Vec3 q = m.vertices[start + mirror];
+      m.vertices.push_back(Vec3(-q.x(), q.y(), q.z()));
+      continue;
+    }
+    const double a = (odd ? 0.0 : kPi / n) + 2.0 * kPi * j / n;
+    m.vertices.push_back(Vec3(mirror == j ? 0.0 : -r * std::sin(a), r * std::cos(a), z));
+  }
+}
+
+// The open tube from staggered rings (see open_tube() in shapes.h).
+TriMesh tube_rings(double r, double h, double edge) {
+  const int n = std::max(6, static_cast<int>(std::lround(2.0 * kPi * r / edge)));
+  const int rings = std::max(1, static_cast<int>(std::lround(h / (0.5 * std::sqrt(3.0) * edge))));
+  TriMesh m;
+  m.vertices.reserve(static_cast<size_t>(n) * (rings + 1));
+  m.faces.reserve(2 * static_cast<size_t>(n) * rings);
+  for (int k = 0; k <= rings; ++k) add_symmetric_ring(m, k, n, r, k == rings ? h : h * k / rings);
+  for (int k = 0; k < rings; ++k) {
+    // In spacings from the upper ring's vertex 0, the lower ring's vertices
+    // lie at L + 1/2 (upper ring odd) or L - 1/2 (upper ring even); starting
+    // at the first one after upper vertex 0 (j0), the j-th is at j + 1/2.
+    // The upper ring is the "inner" ring of join_rings(), which makes the
+    // normals point outward.
+    const int up = (k + 1) * n, low = k * n;
+    const int j0 = (k + 1) % 2 == 1 ? 0 : 1;
+    join_rings(
+        m, n, n, [&](int i) { return up + i % n; }, [&](int j) { return low + (j0 + j) % n; },
+        [](int i, int j) { return j + 1.5 <= i + 1; });
+  }
+  return m;
+}
+
+// Unit direction of the centre of the cap's face opening.
+Vec3 cap_face_axis(const CapShape& c) {
+  const double e = c.face_elevation_deg * kPi / 180.0;
+  return Vec3(0.0, -std::cos(e), -std::sin(e));
+}
+
+// The closest point of the circle {x on the sphere of radius r : angle(x,
+// axis) = a} to p (any point of p's half-plane around the axis).
+Vec3 closest_on_rim(const Vec3& p, const Vec3& axis, double a, double r) {
+  Vec3 t = p - p.dot(axis) * axis;
+  if (t.norm() <= 1e-12 * r) t = axis.unitOrthogonal();
+  return r * (std::cos(a) * axis + std::sin(a) * t.normalized());
+}
+
 }  // namespace
 
 double triple_peak_height(double x, double y) {
@@ -347,8 +404,95 @@ TriMesh cylinder_patch(double radius, double angle, double height, double edge_l
   return isotropic_remesh(m, o);
 }
 
+TriMesh open_tube(double radius, double height, double edge_length) {
+  check_size("tube", "radius", radius);
+  check_size("tube", "height", height);
+  check_edge("tube", edge_length, std::min(2.0 * kPi * radius / 6.0, height), 2.0 * kPi * radius * height);
+  return tube_rings(radius, height, edge_length);
+}
+
+TriMesh cap(const CapShape& c, double edge_length) {
+  check_size("cap", "radius", c.radius);
+  for (const auto& [name, a] : {std::pair<const char*, double>{"face angle", c.face_angle_deg},
+                                {"neck angle", c.neck_angle_deg}}) {
+    if (!(a >= 5.0 && a <= 85.0)) {
+      throw InvalidInput(fmt::format("cap: the {} must be between 5 and 85 degrees, got {}", name, a));
+    }
+  }
+  if (!std::isfinite(c.face_elevation_deg) || std::abs(c.face_elevation_deg) > 85.0) {
+    throw InvalidInput(fmt::format("cap: the face elevation must be within ±85 degrees, got {}",
+                                   c.face_elevation_deg));
+  }
+  const double r = c.radius, deg = kPi / 180.0;
+  const double face = c.face_angle_deg * deg, neck = c.neck_angle_deg * deg;
+  const Vec3 face_axis = cap_face_axis(c), neck_axis(0.0, 0.0, -1.0);
+  // Angle between the two opening centres minus both openings: the gap.
+  const double gap = std::acos(std::clamp(face_axis.dot(neck_axis), -1.0, 1.0)) - face - neck;
+  if (!(gap * r >= 2.0 * edge_length)) {
+    throw InvalidInput(fmt::format(
+        "cap: the face and neck openings are {:.3g} mm apart, less than two edge lengths ({} mm); make "
+        "them smaller or the edge length shorter",
+        gap * r, 2.0 * edge_length));
+  }
+  const double area = 2.0 * kPi * r * r * (std::cos(face) + std::cos(neck));
+  check_edge("cap", edge_length, std::min(gap * r * 4.0, r * std::sin(face)), area);
+
+  // Rings of latitude from the crown to the neck rim, the faces of the face
+  // opening removed (by their centroids), then remeshed with the rims held
+  // on their circles.
+  const double polar_end = kPi - neck;
+  const int rings = std::max(2, static_cast<int>(std::lround(polar_end * r / (0.5 * std::sqrt(3.0) * edge_length))));
+  const TriMesh full = ring_mesh(
+      rings,
+      [&](int k) { return static_cast<int>(std::lround(2.0 * kPi * r * std::sin(polar_end * k / rings) / edge_length)); },
+      [&](int k, double phi) {
+        const double theta = polar_end * k / rings;
+        return Vec3(r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi), r * std::cos(theta));
+      });
+  TriMesh m;
+  m.vertices = full.vertices;
+  const double cos_face = std::cos(face);
+  for (const auto& t : full.faces) {
+    const Vec3 centroid = (full.vertices[t[0]] + full.vertices[t[1]] + full.vertices[t[2]]) / 3.0;
+    if (centroid.normalized().dot(face_axis) < cos_face) m.faces.push_back(t);
+  }
+  // Drop the vertices inside the opening; boundary vertices go to their rim.
+  {
+    std::vector<int> index(m.num_vertices(), -1);
+    for (const auto& t : m.faces)
+      for (int v : t) index[v] = 0;
+    std::vector<Vec3> kept;
+    for (int v = 0; v < m.num_vertices(); ++v) {
+      if (index[v] < 0) continue;
+      index[v] = static_cast<int>(kept.size());
+      kept.push_back(m.vertices[v]);
+    }
+    for (auto& t : m.faces)
+      for (int& v : t) v = index[v];
+    m.vertices = std::move(kept);
+  }
+  auto on_sphere = [r](const Vec3& p) {
+    const double n = p.norm();
+    return n > 0.0 ? Vec3(p * (r / n)) : Vec3(0.0, 0.0, r);
+  };
+  auto on_rims = [=](const Vec3& p) {
+    // The nearer rim: compare the angular distances to the two circles.
+    const Vec3 u = p.normalized();
+    const double to_face = std::abs(std::acos(std::clamp(u.dot(face_axis), -1.0, 1.0)) - face);
+    const double to_neck = std::abs(std::acos(std::clamp(u.dot(neck_axis), -1.0, 1.0)) - neck);
+    return to_face <= to_neck ? closest_on_rim(p, face_axis, face, r) : closest_on_rim(p, neck_axis, neck, r);
+  };
+  RemeshOptions o;
+  o.target_edge_length = edge_length;
+  o.iterations = 8;
+  o.boundary_corner_angle_deg = 0.0;
+  o.project = on_sphere;
+  o.project_boundary = on_rims;
+  return isotropic_remesh(m, o);
+}
+
 std::vector<std::string> shape_names() {
-  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch"};
+  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube"};
 }
 
 TriMesh make_shape(std::string_view name, double edge_length) {
@@ -358,6 +502,8 @@ TriMesh make_shape(std::string_view name, double edge_length) {
   if (name == "disk") return flat_disk(50.0, edge_length);
   if (name == "rectangle") return rectangle(150.0, 100.0, edge_length);
   if (name == "cylinder-patch") return cylinder_patch(50.0, kPi, 100.0, edge_length);
+  if (name == "cap") return cap(CapShape{}, edge_length);
+  if (name == "tube") return open_tube(40.0, 100.0, edge_length);
   std::string names;
   for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
   throw InvalidInput(fmt::format("unknown shape '{}'; the built-in shapes are: {}", name, names));

@@ -3,14 +3,18 @@
 /// Built-in test surfaces, meshed to a target edge length (mm) by isotropic
 /// remeshing with exact projection (seed §2.C.2, Algorithm 2.3): the
 /// triple-peak model (eq. 2.5), the monkey saddle (eq. 2.7) and simple
-/// reference shapes. The hemisphere is instead built directly from rings of
-/// latitude (no remeshing; well under a millisecond at the default size).
+/// reference shapes. The hemisphere and the tube are instead built directly
+/// from rings (no remeshing; well under a millisecond at the default size).
 ///
-/// Every shape is a disk (one component, one boundary loop, genus 0),
-/// consistently oriented with normals towards +z (outward for the hemisphere
-/// and the cylinder patch), deterministic. Every vertex lies on the analytic
-/// surface (up to rounding) and every boundary vertex on the analytic
-/// boundary curve; corners of rectangular domains are mesh vertices.
+/// Every shape but two is a disk (one component, one boundary loop, genus
+/// 0); the `cap` (a dome with a face opening and a neck opening, like a
+/// skull cap or a balaclava) and the open `tube` are annuli (two boundary
+/// loops, genus 0), the inputs that the design routes cut into a disk
+/// themselves (cut_to_disk.h). All are consistently oriented with normals
+/// towards +z (outward for the hemisphere, the cylinder patch, the cap and
+/// the tube) and deterministic. Every vertex lies on the analytic surface
+/// (up to rounding) and every boundary vertex on the analytic boundary
+/// curve; corners of rectangular domains are mesh vertices.
 ///
 /// \throw InvalidInput (all functions) when a size or the edge length is not
 ///        positive and finite, the edge length exceeds a quarter of the
@@ -76,9 +80,48 @@ TriMesh rectangle(double width = 150.0, double height = 100.0,
 TriMesh cylinder_patch(double radius = 50.0, double angle = 3.14159265358979323846,
                        double height = 100.0, double edge_length = kDefaultShapeEdgeLength);
 
+/// The open tube x² + y² = r², z in [0, height] (both ends open: two
+/// boundary loops). Normals point outward. Area 2π r h.
+///
+/// Built from K + 1 rings of n = max(6, round(2πr / l)) vertices, K =
+/// max(1, round(h / (√3/2 l))) (neighbouring rings an equilateral
+/// triangle's height apart), rings at z = h k / K: odd rings have a vertex
+/// on the +y axis, even rings are turned by half a spacing, so neighbouring
+/// rings are staggered (nearly equilateral triangles) and every ring is
+/// mirror-symmetric about the plane x = 0.
+TriMesh open_tube(double radius = 40.0, double height = 100.0, double edge_length = kDefaultShapeEdgeLength);
+
+/// Parameters of cap() (mm and degrees).
+struct CapShape {
+  double radius = 90.0;  ///< radius of the head sphere, centred at the origin
+  /// Face opening: the points of the sphere within this angle of the
+  /// direction (0, -cos e, -sin e), e = face_elevation_deg below the
+  /// equator (the front is -y).
+  double face_angle_deg = 35.0;
+  double face_elevation_deg = 0.0;
+  /// Neck opening: the points within this angle of the south pole (0, 0, -r).
+  double neck_angle_deg = 40.0;
+};
+
+/// A skull cap / balaclava: the sphere of CapShape::radius minus a face
+/// opening at the front (-y) and a neck opening at the bottom (-z); an
+/// annulus (two boundary loops: the face rim and the neck rim, both exact
+/// circles on the sphere), mirror-symmetric about the plane x = 0 (the
+/// symmetry plane of the garment). With the defaults: 162 x 180 x 159 mm,
+/// area 4πr² - 2πr²(2 - cos 35° - cos 40°) ≈ 80,600 mm², the face rim
+/// 103 mm wide, the neck rim 116 mm across, and the shortest seam between
+/// the rims the 15° of the front meridian below the face (23.6 mm, chin to
+/// neck). Meshed by isotropic remeshing with exact projection onto the
+/// sphere and the two rim circles, from rings of latitude with the faces of
+/// the face opening removed.
+/// 	hrow InvalidInput (besides the common conditions) when the openings
+///        overlap or one is not between 5° and 85°.
+TriMesh cap(const CapShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
+
 /// Names accepted by make_shape(), with their default sizes:
 /// hemisphere (r 75), triple-peak (150 x 100), monkey-saddle (100 x 100 x 100),
-/// disk (r 50), rectangle (150 x 100), cylinder-patch (r 50, 180°, height 100).
+/// disk (r 50), rectangle (150 x 100), cylinder-patch (r 50, 180°, height 100),
+/// cap (CapShape defaults: r 90, two openings), tube (r 40, height 100, open).
 std::vector<std::string> shape_names();
 
 /// The named shape at its default size, meshed with the given edge length.

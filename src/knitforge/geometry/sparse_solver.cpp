@@ -15,6 +15,7 @@ struct SparseSolver::Impl {
   // factor 0.34 s vs 0.49 s, 3-column solve 16 ms vs 43 ms).
   Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower> llt;
   int n = 0;
+  long nnz = -1;  // of the analysed pattern
   bool ok = false;
   Impl() {
     // The library never prints: silence CHOLMOD's own error/warning output,
@@ -46,6 +47,7 @@ void SparseSolver::factor(const SparseMatrix& A) {
     }
   }
   impl_->llt.compute(A);  // reads the lower triangle only
+  impl_->nnz = A.nonZeros();
   if (impl_->llt.info() != Eigen::Success) {
     const auto& c = impl_->llt.cholmod();
     throw SolverError(fmt::format(
@@ -54,6 +56,28 @@ void SparseSolver::factor(const SparseMatrix& A) {
         A.rows(), A.cols(), c.status));
   }
   impl_->n = static_cast<int>(A.rows());
+  impl_->ok = true;
+}
+
+void SparseSolver::refactor(const SparseMatrix& A) {
+  if (!impl_ || !impl_->ok || A.rows() != impl_->n || A.cols() != impl_->n || A.nonZeros() != impl_->nnz) {
+    factor(A);
+    return;
+  }
+  impl_->ok = false;
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      if (!std::isfinite(it.value())) {
+        throw InvalidInput(fmt::format("sparse solver: matrix entry ({}, {}) is not finite", it.row(), it.col()));
+      }
+    }
+  }
+  impl_->llt.factorize(A);
+  if (impl_->llt.info() != Eigen::Success) {
+    throw SolverError(fmt::format(
+        "sparse solver: the {} x {} matrix is not positive definite (CHOLMOD status {})", A.rows(), A.cols(),
+        impl_->llt.cholmod().status));
+  }
   impl_->ok = true;
 }
 

@@ -34,6 +34,12 @@ class SparseSolver {
   ///        SolverError when A is not positive definite (singular or
   ///        indefinite), naming the column where the factorisation stopped.
   void factor(const SparseMatrix& A);
+  /// Factors A, whose sparsity pattern is that of the matrix of the last
+  /// successful factor()/refactor() (same size and non-zeros): the symbolic
+  /// analysis (ordering) is reused, only the numeric factor is recomputed.
+  /// Falls back to factor() when there is none or the size or non-zero count
+  /// differs. \throw as factor().
+  void refactor(const SparseMatrix& A);
 
   bool factored() const;
   /// Size of the factored matrix (0 before factor()).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
@@ -62,8 +63,9 @@ struct FaceCluster {
 
 class Splitter {
  public:
-  Splitter(const TriMesh& mesh, const std::vector<MeshPoint>& path, const SplitOptions& options)
-      : mesh_(mesh), path_(path), snap_(options.snap),
+  Splitter(const TriMesh& mesh, const std::vector<MeshPoint>& path, std::vector<int> path_start,
+           const SplitOptions& options)
+      : mesh_(mesh), path_(path), path_start_(std::move(path_start)), snap_(options.snap),
         he_(build_halfedges(mesh.num_vertices(), mesh.faces)) {
     edge_lo_.assign(he_.num_edges(), -1);
     edge_hi_.assign(he_.num_edges(), -1);
@@ -110,7 +112,16 @@ class Splitter {
                                const std::vector<std::pair<int, int>>& chords);
 
   const TriMesh& mesh_;
+  // The points of all paths, one after the other; path k is
+  // path_[path_start_[k] .. path_start_[k + 1]).
   const std::vector<MeshPoint>& path_;
+  std::vector<int> path_start_;
+  // "path point i" (one path) or "point j of path k" (several), for messages.
+  std::string point_name(int i) const {
+    if (path_start_.size() <= 2) return fmt::format("path point {}", i);
+    const int k = static_cast<int>(std::upper_bound(path_start_.begin(), path_start_.end(), i) - path_start_.begin()) - 1;
+    return fmt::format("point {} of path {}", i - path_start_[k], k);
+  }
   double snap_;
   Halfedges he_;
   std::vector<int> edge_lo_, edge_hi_, edge_h_;
@@ -145,24 +156,24 @@ Ref Splitter::normalize(int i) const {
   const int nv = mesh_.num_vertices();
   if (p.face >= 0) {
     if (p.face >= mesh_.num_faces()) {
-      throw InvalidInput(fmt::format("split_mesh_along_path: path point {} lies in face {}, but the "
+      throw InvalidInput(fmt::format("split_mesh_along_path: {} lies in face {}, but the "
                                      "mesh has {} faces",
-                                     i, p.face, mesh_.num_faces()));
+                                     point_name(i), p.face, mesh_.num_faces()));
     }
     std::array<double, 3> b = p.bary;
     double sum = 0.0;
     for (double x : b) {
       if (!std::isfinite(x) || x < -1e-9) {
-        throw InvalidInput(fmt::format("split_mesh_along_path: path point {} in face {} has invalid "
+        throw InvalidInput(fmt::format("split_mesh_along_path: {} in face {} has invalid "
                                        "barycentric coordinates ({}, {}, {}); they must be >= 0",
-                                       i, p.face, b[0], b[1], b[2]));
+                                       point_name(i), p.face, b[0], b[1], b[2]));
       }
       sum += x;
     }
     if (std::abs(sum - 1.0) > 1e-6) {
-      throw InvalidInput(fmt::format("split_mesh_along_path: the barycentric coordinates of path point "
-                                     "{} in face {} sum to {}, not 1",
-                                     i, p.face, sum));
+      throw InvalidInput(fmt::format("split_mesh_along_path: the barycentric coordinates of {} in face {} "
+                                     "sum to {}, not 1",
+                                     point_name(i), p.face, sum));
     }
     for (double& x : b) x = std::max(x, 0.0) / sum;
     const auto& t = mesh_.faces[p.face];
@@ -189,9 +200,9 @@ Ref Splitter::normalize(int i) const {
     return r;
   }
   if (p.v0 < 0 || p.v0 >= nv || p.v1 < 0 || p.v1 >= nv) {
-    throw InvalidInput(fmt::format("split_mesh_along_path: path point {} refers to vertices ({}, {}), "
+    throw InvalidInput(fmt::format("split_mesh_along_path: {} refers to vertices ({}, {}), "
                                    "but the mesh has {} vertices",
-                                   i, p.v0, p.v1, nv));
+                                   point_name(i), p.v0, p.v1, nv));
   }
   if (p.v0 == p.v1) {
     Ref r;
@@ -200,14 +211,14 @@ Ref Splitter::normalize(int i) const {
   }
   const int e = find_edge(p.v0, p.v1);
   if (e < 0) {
-    throw InvalidInput(fmt::format("split_mesh_along_path: path point {} lies on ({}, {}), which is "
+    throw InvalidInput(fmt::format("split_mesh_along_path: {} lies on ({}, {}), which is "
                                    "not an edge of the mesh",
-                                   i, p.v0, p.v1));
+                                   point_name(i), p.v0, p.v1));
   }
   if (!std::isfinite(p.ratio) || p.ratio < -1e-9 || p.ratio > 1.0 + 1e-9) {
-    throw InvalidInput(fmt::format("split_mesh_along_path: path point {} on edge ({}, {}) has ratio "
+    throw InvalidInput(fmt::format("split_mesh_along_path: {} on edge ({}, {}) has ratio "
                                    "{}; it must be in [0, 1]",
-                                   i, p.v0, p.v1, p.ratio));
+                                   point_name(i), p.v0, p.v1, p.ratio));
   }
   const double t = std::clamp(p.ratio, 0.0, 1.0);
   return snap_edge(e, p.v0 < p.v1 ? t : 1.0 - t);
@@ -527,8 +538,12 @@ SplitMeshResult Splitter::run() {
     if (r.kind == Kind::Edge) return edge_clusters_[r.cluster].s;
     return r.v == edge_lo_[e] ? 0.0 : 1.0;
   };
-  if (n > 0) out_.path.push_back(out_.point_vertices[0]);
-  for (int i = 0; i + 1 < n; ++i) {
+  const int num_paths = static_cast<int>(path_start_.size()) - 1;
+  out_.paths.resize(num_paths);
+  for (int k = 0; k < num_paths; ++k) {
+  std::vector<int>& out_path = out_.paths[k];
+  if (path_start_[k + 1] > path_start_[k]) out_path.push_back(out_.point_vertices[path_start_[k]]);
+  for (int i = path_start_[k]; i + 1 < path_start_[k + 1]; ++i) {
     const Ref& p = refs[i];
     const Ref& q = refs[i + 1];
     const int vp = out_.point_vertices[i], vq = out_.point_vertices[i + 1];
@@ -551,20 +566,22 @@ SplitMeshResult Splitter::run() {
         for (int c : ids) {
           const double s = edge_clusters_[c].s;
           if ((s - sp) * (sq - s) > 0.0 && edge_clusters_[c].vid != vp && edge_clusters_[c].vid != vq)
-            out_.path.push_back(edge_clusters_[c].vid);
+            out_path.push_back(edge_clusters_[c].vid);
         }
       }
-      out_.path.push_back(vq);
+      out_path.push_back(vq);
       continue;
     }
     const std::vector<int> fp = faces_of(p), fq = faces_of(q);
     std::vector<int> common;
     std::set_intersection(fp.begin(), fp.end(), fq.begin(), fq.end(), std::back_inserter(common));
     if (common.empty()) {
-      throw InvalidInput(fmt::format("split_mesh_along_path: path points {} and {} do not lie on a "
+      const std::string which = num_paths > 1 ? fmt::format(" of path {}", k) : "";
+      const int i0 = i - path_start_[k];
+      throw InvalidInput(fmt::format("split_mesh_along_path: {} {} and {}{} do not lie on a "
                                      "common face; consecutive points must share a face (insert the "
                                      "points where the path crosses the edges in between)",
-                                     i, i + 1));
+                                     num_paths > 1 ? "points" : "path points", i0, i0 + 1, which));
     }
     const int f = common.front();
     auto& list = chords[f];
@@ -572,8 +589,10 @@ SplitMeshResult Splitter::run() {
     if (std::find(list.begin(), list.end(), std::pair<int, int>(key.first, key.second)) == list.end())
       list.emplace_back(key.first, key.second);
     touched[f] = 1;
-    out_.path.push_back(vq);
+    out_path.push_back(vq);
   }
+  }
+  if (num_paths > 0) out_.path = out_.paths[0];
 
   static const std::vector<std::pair<int, int>> kNoChords;
   for (int f = 0; f < mesh_.num_faces(); ++f) {
@@ -592,10 +611,21 @@ SplitMeshResult Splitter::run() {
 
 SplitMeshResult split_mesh_along_path(const TriMesh& mesh, const std::vector<MeshPoint>& path,
                                       const SplitOptions& options) {
+  return split_mesh_along_paths(mesh, {path}, options);
+}
+
+SplitMeshResult split_mesh_along_paths(const TriMesh& mesh, const std::vector<std::vector<MeshPoint>>& paths,
+                                       const SplitOptions& options) {
   if (!std::isfinite(options.snap) || options.snap < 0.0 || options.snap >= 0.25) {
     throw InvalidInput(fmt::format("split_mesh_along_path: snap must be in [0, 0.25), got {}", options.snap));
   }
-  Splitter splitter(mesh, path, options);
+  std::vector<MeshPoint> points;
+  std::vector<int> start{0};
+  for (const auto& path : paths) {
+    points.insert(points.end(), path.begin(), path.end());
+    start.push_back(static_cast<int>(points.size()));
+  }
+  Splitter splitter(mesh, points, std::move(start), options);
   return splitter.run();
 }
 

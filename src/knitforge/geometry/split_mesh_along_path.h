@@ -56,7 +56,11 @@ struct SplitMeshResult {
   /// path segment runs along an edge that carries further path points, these
   /// are included, so every consecutive pair is an edge of `mesh`.
   std::vector<int> path;
-  /// For every input path point, its vertex in `mesh` (after snapping).
+  /// split_mesh_along_paths(): every path as vertices of `mesh`, as `path`
+  /// is for one (path == paths[0]).
+  std::vector<std::vector<int>> paths;
+  /// For every input path point, its vertex in `mesh` (after snapping); the
+  /// points of all paths one after the other for split_mesh_along_paths().
   std::vector<int> point_vertices;
   /// For every face of `mesh`, the face of the input it lies in.
   std::vector<int> face_origin;
@@ -83,6 +87,15 @@ struct SplitMeshResult {
 /// \throw TopologyError from build_halfedges() for non-manifold input.
 SplitMeshResult split_mesh_along_path(const TriMesh& mesh, const std::vector<MeshPoint>& path,
                                       const SplitOptions& options = {});
+
+/// Splits `mesh` along several paths at once (e.g. the pieces of a plane
+/// section), as split_mesh_along_path() does for one: a segment joins
+/// consecutive points of one path only. Points of different paths that
+/// fall within the snapping distance of each other become one vertex;
+/// segments of different paths must not cross inside a face.
+/// \throw as split_mesh_along_path(), naming the path and its point.
+SplitMeshResult split_mesh_along_paths(const TriMesh& mesh, const std::vector<std::vector<MeshPoint>>& paths,
+                                       const SplitOptions& options = {});
 
 /// Carries a per-vertex scalar of the input mesh over to the split mesh
 /// (copied for old vertices, linearly interpolated for new ones, which is

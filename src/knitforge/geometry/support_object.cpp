@@ -10,6 +10,7 @@
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/geometry/thicken_surface.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/work_limit.h"
 
 namespace knitforge {
 
@@ -216,6 +217,12 @@ SupportObject support_object(const TriMesh& surface, const SupportOptions& optio
     lo -= Vec2::Constant(options.base_margin);
     hi += Vec2::Constant(options.base_margin);
     const double spacing = perimeter / static_cast<double>(a.size());
+    // The rectangle's boundary points at the loop's spacing; the band between
+    // the loops is triangulated by a dynamic program over both (|a| x |b|).
+    const double points = 2.0 * ((hi.x() - lo.x()) + (hi.y() - lo.y())) / spacing;
+    check_work({fmt::format("support_object: a base rectangle of {:.4g} x {:.4g} mm", hi.x() - lo.x(), hi.y() - lo.y()),
+                points * static_cast<double>(a.size()), "band cells", 5e7, 16.0,
+                "use a smaller base margin (--margin) or the projected base"});
     std::vector<Vec2> corners{lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
     if (signed_area(a2) < 0.0) std::reverse(corners.begin() + 1, corners.end());
     for (int s = 0; s < 4; ++s) {

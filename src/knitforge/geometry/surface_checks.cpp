@@ -46,7 +46,9 @@ void add(SurfaceReport& r, SurfaceIssue issue) {
 
 std::string face_list(const std::vector<int>& faces) {
   std::string s;
-  for (size_t i = 0; i < faces.size(); ++i) s += fmt::format("{}{}", i ? ", " : "", faces[i]);
+  // At most 8 named: a message stays one short line however many faces there are.
+  for (size_t i = 0; i < faces.size() && i < 8; ++i) s += fmt::format("{}{}", i ? ", " : "", faces[i]);
+  if (faces.size() > 8) s += fmt::format(" and {} more", faces.size() - 8);
   return s;
 }
 
@@ -342,7 +344,8 @@ void require_valid_surface(const TriMesh& mesh, std::string_view what) {
   if (r.num_faces == 0) throw TopologyError(fmt::format("{} has no faces", what));
 }
 
-void require_disk(const TriMesh& mesh, std::string_view what) {
+void require_disk(const TriMesh& mesh, std::string_view what, std::string_view cut_hint) {
+  const std::string or_hint = cut_hint.empty() ? std::string() : fmt::format(", or {}", cut_hint);
   const SurfaceReport r = validate_surface(mesh);
   if (!r.ok()) throw_errors(r, what);
   if (r.is_disk) return;
@@ -356,20 +359,19 @@ void require_disk(const TriMesh& mesh, std::string_view what) {
   const int b = r.num_boundary_loops, g = r.genus;
   if (b == 0) {
     throw TopologyError(fmt::format(
-        "{} is a closed surface (no boundary, genus {}): cut it open into a disk along a path{}, or "
-        "pass --cut",
-        what, g, g > 0 ? " that also cuts every handle" : ""));
+        "{} is a closed surface (no boundary, genus {}): cut it open into a disk along a path{}{}",
+        what, g, g > 0 ? " that also cuts every handle" : "", or_hint));
   }
   if (g == 0) {
     throw TopologyError(fmt::format(
         "{} has {} boundary loops and genus 0 (a {}): cut it into a disk along a path between the "
-        "loops, or pass --cut",
-        what, b, b == 2 ? "cylinder/annulus" : "disk with holes"));
+        "loops{}",
+        what, b, b == 2 ? "cylinder/annulus" : "disk with holes", or_hint));
   }
   throw TopologyError(fmt::format(
       "{} has {} boundary loop(s) and genus {} (it has handles): cut it into a disk along paths "
-      "through every handle, or pass --cut",
-      what, b, g));
+      "through every handle{}",
+      what, b, g, or_hint));
 }
 
 }  // namespace knitforge

@@ -89,10 +89,12 @@ SurfaceReport validate_surface(const TriMesh& mesh, const SurfaceCheckOptions& o
 
 /// Throws unless `mesh` is a valid, consistently oriented disk (one
 /// component, one boundary loop, genus 0). `what` names the mesh in the
-/// message (e.g. a file name).
+/// message (e.g. a file name); `cut_hint`, when not empty, is offered as
+/// the alternative to cutting by hand (e.g. "pass --cut FILE.obj" from a
+/// command that has that option; the library names no option itself).
 /// \throw TopologyError with the first errors of validate_surface(), or with
 ///        what the topology is and how to cut it into a disk.
-void require_disk(const TriMesh& mesh, std::string_view what);
+void require_disk(const TriMesh& mesh, std::string_view what, std::string_view cut_hint = {});
 
 /// Throws unless `mesh` has no errors in validate_surface() (any topology).
 /// \throw TopologyError (or InvalidInput for non-finite coordinates) listing

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -17,6 +18,12 @@
 namespace knitforge::io_detail {
 
 std::string load_file(const std::string& path) {
+  {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      throw IOError(fmt::format("{}: is a directory, not a file; give the path of a file", path));
+    }
+  }
   std::ifstream in(path, std::ios::in | std::ios::binary);
   if (!in) {
     throw IOError(fmt::format("{}: cannot open file ({}); check the path", path, std::strerror(errno)));
@@ -40,12 +47,38 @@ std::string where(const std::string& path, LocKind kind, int64_t loc) {
   return kind == LocKind::Line ? fmt::format("{}:{}: ", path, loc) : fmt::format("{}: byte {}: ", path, loc);
 }
 
+std::string printable_message(std::string_view message) {
+  // Quoted spans ('...') are input echoed back: at most 80 characters of
+  // them are kept; any byte that is not printable ASCII becomes '?'.
+  std::string out;
+  out.reserve(std::min<size_t>(message.size(), 400));
+  bool quoted = false;
+  size_t quoted_len = 0, cut = 0;
+  for (const char ch : message) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c == '\'') {
+      if (quoted && cut > 0) out += fmt::format("...' ({} more characters)", cut), cut = 0;
+      else out += '\'';
+      quoted = !quoted;
+      quoted_len = 0;
+      continue;
+    }
+    if (quoted && ++quoted_len > 80) {
+      ++cut;
+      continue;
+    }
+    out += (c >= 0x20 && c < 0x7f) ? ch : '?';
+  }
+  if (quoted && cut > 0) out += fmt::format("... ({} more characters)", cut);
+  return out;
+}
+
 void fail_line(const std::string& path, int64_t line, std::string_view message) {
-  throw IOError(fmt::format("{}:{}: {}", path, line, message));
+  throw IOError(fmt::format("{}:{}: {}", path, line, printable_message(message)));
 }
 
 void fail_byte(const std::string& path, int64_t offset, std::string_view message) {
-  throw IOError(fmt::format("{}: byte {}: {}", path, offset, message));
+  throw IOError(fmt::format("{}: byte {}: {}", path, offset, printable_message(message)));
 }
 
 LineReader::LineReader(std::string_view text, bool strip_bom) : text_(text) {

@@ -30,9 +30,14 @@ enum class LocKind : uint8_t { Line, Byte };
 /// "path:12: " for lines, "path: byte 345: " for byte offsets.
 std::string where(const std::string& path, LocKind kind, int64_t loc);
 
-/// Throws IOError("path:line: message").
+/// `message` with every quoted span ('...', input echoed back) cut to 80
+/// characters ("... (N more characters)") and every byte that is not
+/// printable ASCII replaced by '?': messages quote input, never dump it.
+std::string printable_message(std::string_view message);
+
+/// Throws IOError("path:line: message") (message as printable_message()).
 [[noreturn]] void fail_line(const std::string& path, int64_t line, std::string_view message);
-/// Throws IOError("path: byte N: message").
+/// Throws IOError("path: byte N: message") (message as printable_message()).
 [[noreturn]] void fail_byte(const std::string& path, int64_t offset, std::string_view message);
 
 /// Iterates over the lines of a text, with 1-based line numbers. Strips "\r"

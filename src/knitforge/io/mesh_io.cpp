@@ -1,5 +1,7 @@
 #include "knitforge/io/mesh_io.h"
 
+#include <filesystem>
+
 #include <fmt/core.h>
 
 #include "knitforge/io/io_detail.h"
@@ -12,6 +14,12 @@
 namespace knitforge {
 
 TriMesh read_mesh(const std::string& path) {
+  {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      throw IOError(fmt::format("{}: is a directory, not a mesh file", path));
+    }
+  }
   const std::string ext = io_detail::extension(path);
   if (ext == "obj") return read_obj(path);
   if (ext == "ply") return read_ply(path);

@@ -97,6 +97,9 @@ PlyHeader read_ply_header(const std::string& path, std::string_view data) {
         fail_line(path, ln, fmt::format("unknown PLY format '{}' (expected ascii, binary_little_endian "
                                         "or binary_big_endian)", tok[1]));
       }
+      if (tok.size() != 3 || tok[2] != "1.0") {
+        fail_line(path, ln, "the format line must end with the version 1.0 (e.g. 'format ascii 1.0')");
+      }
       have_format = true;
     } else if (tok[0] == "element") {
       PlyElement e;

@@ -19,7 +19,14 @@ void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write,
                            bool binary) {
   namespace fs = std::filesystem;
+  if (path.empty()) throw IOError("cannot write a file with an empty name; give a file name");
   const fs::path target(path);
+  {
+    std::error_code dir_ec;
+    if (fs::is_directory(target, dir_ec)) {
+      throw IOError(fmt::format("{}: is a directory; give a file name to write", path));
+    }
+  }
   static std::atomic<unsigned> counter{0};
   const fs::path tmp = target.parent_path() / fmt::format(".{}.tmp{}.{}", target.filename().string(),
                                                           ::getpid(), counter++);
@@ -50,8 +57,9 @@ void write_file_atomically(const std::string& path,
   std::error_code ec;
   fs::rename(tmp, target, ec);
   if (ec) {
+    const std::string why = ec.message();  // before remove() resets ec
     fs::remove(tmp, ec);
-    throw IOError(fmt::format("{}: cannot replace file: {}", path, ec.message()));
+    throw IOError(fmt::format("{}: cannot replace file: {}", path, why));
   }
 }
 

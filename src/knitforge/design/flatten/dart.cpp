@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -14,12 +15,6 @@
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
-
-std::string_view to_string(DartType t) { return t == DartType::OneEnd ? "one-end" : "two-end"; }
-
-std::string_view to_string(DartOrientation o) {
-  return o == DartOrientation::Horizontal ? "horizontal" : "vertical";
-}
 
 double dart_angle_limit(DartOrientation orientation, double stitch_width, double stitch_height) {
   if (!(stitch_width > 0.0) || !(stitch_height > 0.0)) {
@@ -95,6 +90,22 @@ void append_path(std::vector<GeodesicPathPoint>& out, const std::vector<Geodesic
 
 }  // namespace
 
+TriMesh closed_darts_mesh(const CutDarts& cut) {
+  if (cut.vertex_class.empty()) return cut.mesh;
+  if (cut.vertex_class.size() != cut.mesh.vertices.size()) {
+    throw InvalidInput("closed_darts_mesh: one vertex class per vertex of the cut mesh needed");
+  }
+  TriMesh closed;
+  const int k = *std::max_element(cut.vertex_class.begin(), cut.vertex_class.end()) + 1;
+  closed.vertices.assign(static_cast<size_t>(k), Vec3::Zero());
+  for (size_t v = 0; v < cut.mesh.vertices.size(); ++v)
+    closed.vertices[static_cast<size_t>(cut.vertex_class[v])] = cut.mesh.vertices[v];
+  closed.faces.reserve(cut.mesh.faces.size());
+  for (const auto& t : cut.mesh.faces)
+    closed.faces.push_back({cut.vertex_class[t[0]], cut.vertex_class[t[1]], cut.vertex_class[t[2]]});
+  return closed;
+}
+
 CutDarts cut_darts(const TriMesh& mesh, const std::vector<DartSpec>& darts) {
   CutDarts out;
   out.mesh = mesh;
@@ -145,6 +156,13 @@ void append_dart(CutDarts& out, const TriMesh& mesh, const DartSpec& spec) {
     mp.reserve(gp.size());
     for (const auto& p : gp) mp.push_back(to_mesh_point(p));
     SplitMeshResult split = split_mesh_along_path(current, mp);
+    if (out.vertex_class.size() != current.vertices.size()) {
+      out.vertex_class.resize(current.vertices.size());
+      std::iota(out.vertex_class.begin(), out.vertex_class.end(), 0);
+    }
+    std::vector<int> split_class = out.vertex_class;
+    int num_classes = split_class.empty() ? 0 : *std::max_element(split_class.begin(), split_class.end()) + 1;
+    while (split_class.size() < split.mesh.vertices.size()) split_class.push_back(num_classes++);
     std::vector<int> path = split.path;
     if (path.size() < 2) {
       throw InvalidInput(fmt::format("dart {}: the path is shorter than the mesh resolution", i));
@@ -221,6 +239,9 @@ void append_dart(CutDarts& out, const TriMesh& mesh, const DartSpec& spec) {
       throw InvalidInput(fmt::format("dart {}: the path runs along the boundary; it cuts nothing", i));
     }
     out.darts.push_back(std::move(r));
+    out.vertex_class.resize(cut.mesh.vertices.size());
+    for (size_t v = 0; v < cut.mesh.vertices.size(); ++v)
+      out.vertex_class[v] = split_class[static_cast<size_t>(cut.vertex_origin[v])];
     out.mesh = std::move(cut.mesh);
   }
 }

@@ -27,8 +27,12 @@ namespace knitforge {
 enum class DartType { OneEnd, TwoEnd };
 enum class DartOrientation { Horizontal, Vertical };
 
-std::string_view to_string(DartType t);         ///< "one-end" / "two-end"
-std::string_view to_string(DartOrientation o);  ///< "horizontal" / "vertical"
+/// "one-end" / "two-end" (inline: the darts JSON reader needs no geometry).
+inline std::string_view to_string(DartType t) { return t == DartType::OneEnd ? "one-end" : "two-end"; }
+/// "horizontal" / "vertical".
+inline std::string_view to_string(DartOrientation o) {
+  return o == DartOrientation::Horizontal ? "horizontal" : "vertical";
+}
 
 /// A point of a dart path on the input surface: a vertex, or a face with
 /// barycentric coordinates, or a 3D position (mm) snapped to the closest
@@ -91,7 +95,17 @@ struct DartResult {
 struct CutDarts {
   TriMesh mesh;
   std::vector<DartResult> darts;  ///< geometry fields (angles) not yet set
+  /// For every vertex of `mesh`, the vertex of the surface with every dart
+  /// closed again (the input as split along the darts) it is a copy of:
+  /// the two copies of a cut vertex share it. Empty before the first dart
+  /// (identity); numbered 0..K-1.
+  std::vector<int> vertex_class;
 };
+
+/// The surface with every dart of `cut` closed again: one vertex per class
+/// of cut.vertex_class (at the position of its copies), the faces of
+/// cut.mesh with their vertices replaced by their classes.
+TriMesh closed_darts_mesh(const CutDarts& cut);
 
 /// Splits and cuts `mesh` along every dart in order (split_mesh_along_path()
 /// then cut_mesh_along_path(), seed §2.B).

@@ -199,6 +199,7 @@ AutoDarts add_darts_automatically(const TriMesh& mesh, const std::vector<DartSpe
   double seconds_cut = timer.seconds();
   out.flattening = flatten_cut(current, options);
   out.rms_sequence.push_back(out.flattening.stats.rms_log_sigma);
+  out.max_sequence.push_back(out.flattening.stitch_max_abs_log_sigma);
   out.stop_reason = fmt::format("added the {} darts asked for", max_darts);
   // One dart alone may be too wide where several would share the opening:
   // the angle limit is checked once all darts are in.
@@ -232,11 +233,24 @@ AutoDarts add_darts_automatically(const TriMesh& mesh, const std::vector<DartSpe
                       out.rms_sequence.back(), next.stats.rms_log_sigma);
       break;
     }
+    if (hint_options.require_lower_maximum && !(next.stitch_max_abs_log_sigma < out.max_sequence.back())) {
+      out.stop_reason = fmt::format(
+          "the next dart lowered the RMS distortion ({:.4f} -> {:.4f}) but not the largest (max |log sigma| "
+          "at stitch scale {:.4f} -> {:.4f}, at its tip)",
+          out.rms_sequence.back(), next.stats.rms_log_sigma, out.max_sequence.back(),
+          next.stitch_max_abs_log_sigma);
+      break;
+    }
+    if (!next.flipped_faces.empty()) {
+      out.stop_reason = fmt::format("the next dart folds the pattern ({} flipped faces)", next.flipped_faces.size());
+      break;
+    }
     out.darts = std::move(trial);
     current = std::move(trial_cut);
     out.added.push_back(*hint);
     out.flattening = std::move(next);
     out.rms_sequence.push_back(out.flattening.stats.rms_log_sigma);
+    out.max_sequence.push_back(out.flattening.stitch_max_abs_log_sigma);
   }
   out.flattening.seconds_cut = seconds_cut;
   if (options.enforce_dart_angle) {

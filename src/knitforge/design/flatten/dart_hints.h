@@ -30,6 +30,10 @@ struct DartHintOptions {
   double depth = 0.6;       ///< one-end: tip at this fraction of the way to the compressed centre
   double length = 0.3;      ///< two-end: length as a fraction of the pattern's bounding-box diagonal
   double exclusion = 0.15;  ///< skip points closer than this fraction of the surface size to earlier darts
+  /// add_darts_automatically(): keep a dart only when it lowers the largest
+  /// distortion (at stitch scale) as well as the RMS. false: the RMS alone
+  /// decides (a dome's darts then concentrate distortion at their tips).
+  bool require_lower_maximum = true;
 };
 
 /// A proposed dart and why.
@@ -51,12 +55,20 @@ struct AutoDarts {
   /// RMS log singular value (DistortionStats::rms_log_sigma) after the given
   /// darts, then after each accepted dart: strictly decreasing.
   std::vector<double> rms_sequence;
+  /// The largest |log σ| at stitch scale (Flattening::stitch_max_abs_log_sigma)
+  /// at the same steps: strictly decreasing too.
+  std::vector<double> max_sequence;
   Flattening flattening;    ///< with all accepted darts
   std::string stop_reason;  ///< why the loop ended
 };
 
 /// Starting from `darts`, proposes and adds up to `max_darts` darts, each
-/// kept only when it lowers the RMS distortion and can be cut and flattened.
+/// kept only when it lowers both the RMS and the maximum distortion (at
+/// stitch scale: a dart's tip concentrates distortion, so on a dome such as
+/// the hemisphere a single dart raises the maximum and is not kept, unless
+/// hint_options.require_lower_maximum is off) and can
+/// be cut and flattened without a fold (a dart that does not is rejected and
+/// the loop ends, saying why in stop_reason).
 /// The angle limit (options.enforce_dart_angle) is checked for the given
 /// darts first and for all darts at the end (a single dart may be too wide
 /// where the next ones share the opening).

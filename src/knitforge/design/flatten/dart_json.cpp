@@ -66,10 +66,28 @@ DartWaypoint parse_point(const json& j, const std::string& source, const std::st
 std::vector<DartSpec> parse_darts_json(std::string_view text, const std::string& source,
                                        double position_scale) {
   json root;
+  // The last key read, to say where a number out of range or a syntax error is
+  // (the parser's own messages quote raw input and its exception names).
+  std::string last_key;
+  const json::parser_callback_t remember_key = [&last_key](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::key && parsed.is_string()) {
+      last_key.clear();
+      for (unsigned char c : parsed.get_ref<const std::string&>()) {
+        if (last_key.size() >= 40) break;
+        last_key += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+      }
+    }
+    return true;
+  };
+  auto after_key = [&last_key] { return last_key.empty() ? std::string() : fmt::format(" (after key \"{}\")", last_key); };
   try {
-    root = json::parse(text.begin(), text.end());
+    root = json::parse(text.begin(), text.end(), remember_key);
   } catch (const json::parse_error& e) {
-    throw InvalidInput(fmt::format("{}: not valid JSON (byte {}): {}", source, e.byte, e.what()));
+    throw InvalidInput(fmt::format("{}: byte {}: not valid JSON{}; check the syntax there", source, e.byte, after_key()));
+  } catch (const json::out_of_range&) {
+    throw InvalidInput(fmt::format("{}: a number is out of range{}; use a finite number", source, after_key()));
+  } catch (const json::exception&) {
+    throw InvalidInput(fmt::format("{}: not valid JSON{}", source, after_key()));
   }
   const json* list = &root;
   if (root.is_object()) {

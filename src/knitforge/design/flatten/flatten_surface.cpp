@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/slim_flatten.h"
 #include "knitforge/geometry/surface_checks.h"
 #include "knitforge/geometry/tutte_embedding.h"
 #include "knitforge/util/errors.h"
@@ -75,22 +76,58 @@ Flattening flatten_surface(const TriMesh& mesh, const std::vector<DartSpec>& dar
   return out;
 }
 
+namespace {
+
+bool injective(const TriMesh& mesh, const std::vector<Vec2>& uv) {
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    if (!(signed_uv_area(mesh, uv, f) > 0.0)) return false;
+  }
+  return true;
+}
+
+// A start without flipped faces for slim_flatten(): the unconstrained ARAP
+// result when it has none, else Tutte's embedding of the surface with the
+// darts closed (bijective for a disk; the two copies of a cut vertex start
+// at one point), else Tutte's embedding of the cut mesh.
+std::vector<Vec2> injective_start(const CutDarts& cut, const std::vector<Vec2>& unconstrained,
+                                  const std::vector<Vec2>& tutte) {
+  if (injective(cut.mesh, unconstrained)) return unconstrained;
+  if (!cut.vertex_class.empty()) {
+    try {
+      const std::vector<Vec2> closed = tutte_embedding(closed_darts_mesh(cut)).uv;
+      std::vector<Vec2> uv(cut.mesh.vertices.size());
+      for (size_t v = 0; v < uv.size(); ++v) uv[v] = closed[static_cast<size_t>(cut.vertex_class[v])];
+      if (injective(cut.mesh, uv)) return align_pattern_to_reference(cut.mesh, uv);
+    } catch (const TopologyError&) {
+      // darts that touch each other: the closed surface is not a manifold disk
+    }
+  }
+  if (injective(cut.mesh, tutte)) return align_pattern_to_reference(cut.mesh, tutte);
+  throw SolverError(
+      "flattening: no start without folded triangles was found (the surface may have degenerate, "
+      "zero-area faces; remove them)");
+}
+
+}  // namespace
+
 Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
   Flattening out;
   Timer timer;
-  out.mesh = std::move(cut.mesh);
-  out.darts = std::move(cut.darts);
+  out.mesh = cut.mesh;
+  out.darts = cut.darts;
 
   ArapFlattenOptions arap;
   arap.max_iterations = options.max_iterations;
   arap.tolerance = options.tolerance;
   arap.initial = tutte_embedding(out.mesh).uv;
+  const std::vector<Vec2> tutte = arap.initial;
   ArapFlattenResult first = arap_flatten(out.mesh, arap);
   out.iterations = first.iterations;
   std::vector<Vec2> uv = align_pattern_to_reference(out.mesh, first.uv);
+  const std::vector<Vec2> unconstrained = uv;
   ArapFlattenResult result = std::move(first);
   if (!out.darts.empty()) {
-    arap.initial = std::move(uv);
+    arap.initial = uv;
     for (const auto& d : out.darts) {
       (d.orientation == DartOrientation::Horizontal ? arap.equal_x : arap.equal_y)
           .emplace_back(d.notch_a, d.notch_b);
@@ -101,10 +138,53 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
   }
   out.converged = result.converged;
   out.relative_energy = result.relative_energy;
+  out.arap_flipped_faces = static_cast<int>(result.flipped_faces.size());
   out.flipped_faces = result.flipped_faces;
   out.uv = std::move(uv);
   out.distortion = flattening_distortion(out.mesh, out.uv);
   out.stats = distortion_stats(out.mesh, out.uv, out.distortion);
+  out.arap_max_abs_log_sigma = out.stats.max_abs_log_sigma();
+  const bool folded = !out.flipped_faces.empty();
+  if (folded || out.arap_max_abs_log_sigma > options.max_arap_log_sigma) {
+    // ARAP folded the pattern (or nearly: a triangle squashed or stretched
+    // beyond the limit): minimise the symmetric Dirichlet energy from a
+    // fold-free start instead, which cannot fold (slim_flatten.h).
+    SlimFlattenOptions slim;
+    slim.initial = injective_start(cut, unconstrained, tutte);
+    slim.max_iterations = options.max_iterations;
+    slim.equal_x = arap.equal_x;
+    slim.equal_y = arap.equal_y;
+    const SlimFlattenResult s = slim_flatten(out.mesh, slim);
+    out.iterations += s.iterations;
+    if (!s.constraints_met && folded) {
+      size_t worst = 0;
+      double worst_gap = -1.0;
+      for (size_t i = 0; i < out.darts.size(); ++i) {
+        const DartResult& d = out.darts[i];
+        const Vec2 gap = s.uv[d.notch_a] - s.uv[d.notch_b];
+        const double g = std::abs(d.orientation == DartOrientation::Horizontal ? gap.x() : gap.y());
+        if (g > worst_gap) worst_gap = g, worst = i;
+      }
+      throw InvalidInput(fmt::format(
+          "dart {} ({} {}) cannot be flattened without folding the pattern: its notches stay {:.3g} mm "
+          "apart where they must align; move the dart, change its orientation or remove it",
+          worst, to_string(out.darts[worst].type), to_string(out.darts[worst].orientation), worst_gap));
+    }
+    // (When the constraints are not met, the unfolded ARAP pattern stays.)
+    std::vector<Vec2> suv = out.darts.empty() ? align_pattern_to_reference(out.mesh, s.uv) : s.uv;
+    std::vector<FaceDistortion> sd = flattening_distortion(out.mesh, suv);
+    const DistortionStats ss = distortion_stats(out.mesh, suv, sd);
+    if (s.constraints_met && (folded || ss.max_abs_log_sigma() < out.stats.max_abs_log_sigma())) {
+      out.uv = std::move(suv);
+      out.distortion = std::move(sd);
+      out.stats = ss;
+      out.converged = s.converged;
+      out.injective_solver = true;
+      out.relative_energy = s.energy;
+      out.flipped_faces = s.flipped_faces;
+    }
+  }
+  out.stitch_max_abs_log_sigma = patch_max_abs_log_sigma(out.mesh, out.distortion, options.stitch_width);
   out.seconds_flatten = timer.seconds();
 
   for (size_t i = 0; i < out.darts.size(); ++i) {

@@ -8,6 +8,16 @@
 /// hard constraints; measure the distortion (flattening_distortion.h) and
 /// each dart's angle against the knittability limit.
 ///
+/// The pattern never folds: ARAP has no barrier against flipped triangles
+/// (it folds near the tips of darts on strongly curved surfaces), so when
+/// its result has one, the pattern is computed instead by slim_flatten()
+/// (symmetric Dirichlet energy, injective by construction) from a fold-free
+/// start: the unconstrained ARAP pattern when it has no fold, else Tutte's
+/// embedding of the surface with the darts closed. When the dart constraints
+/// cannot be met without a fold, the dart is rejected (InvalidInput). A
+/// pattern ARAP nearly folds (a face beyond max_arap_log_sigma) is
+/// recomputed the same way and the one with the lower maximum is kept.
+///
 /// Reference frame (so that "horizontal" means along the courses): the
 /// pattern is rigidly rotated and translated to best fit (least squares) the
 /// projection of the 3D vertices onto the plane perpendicular to the mean
@@ -32,6 +42,10 @@ struct FlattenOptions {
   /// cannot be knitted closed, they become boundaries sewn afterwards).
   /// false: report it in DartResult::angle_ok only.
   bool enforce_dart_angle = true;
+  /// An ARAP pattern with a face stretched or squashed beyond this
+  /// (|log σ| > 1.1: a factor of 3) nearly folds; it is recomputed by the
+  /// injective solver, whose pattern is kept when its largest |log σ| is lower.
+  double max_arap_log_sigma = 1.1;
 };
 
 /// A flattened surface.
@@ -41,19 +55,32 @@ struct Flattening {
   std::vector<DartResult> darts;
   std::vector<FaceDistortion> distortion;  ///< per face of `mesh`
   DistortionStats stats;
-  int iterations = 0;  ///< ARAP iterations, both phases
+  /// The largest |log σ| at the scale of a stitch: patch_max_abs_log_sigma()
+  /// with the stitch width as radius (the maximum the automatic darts lower).
+  double stitch_max_abs_log_sigma = 0.0;
+  int iterations = 0;  ///< ARAP iterations, both phases (+ SLIM iterations)
   bool converged = false;
+  /// ARAP: E / Σ a_f²; with injective_solver: the symmetric Dirichlet energy / (4 x area).
   double relative_energy = 0.0;
-  std::vector<int> flipped_faces;  ///< faces of `mesh` flipped in the pattern
+  /// Faces the ARAP flattening folded (flipped or degenerate); when > 0 the
+  /// pattern is the fold-free SLIM flattening (injective_solver).
+  int arap_flipped_faces = 0;
+  double arap_max_abs_log_sigma = 0.0;  ///< the largest |log σ| of the ARAP pattern
+  /// The pattern is slim_flatten()'s (symmetric Dirichlet energy, no fold by construction).
+  bool injective_solver = false;
+  /// Faces of `mesh` flipped in the pattern: empty (the flattening never
+  /// folds; kept for the callers' checks and reports).
+  std::vector<int> flipped_faces;
   double seconds_cut = 0.0;        ///< wall time of cutting the darts
   double seconds_flatten = 0.0;    ///< Tutte + ARAP
 };
 
 /// Flattens `mesh` with `darts` (see the file comment).
 /// \throw TopologyError when the mesh is not a disk (the message says how to
-///        cut it); InvalidInput from cut_darts() naming the dart, or when a
+///        cut it); InvalidInput from cut_darts() naming the dart, when a
 ///        dart's angle exceeds the limit and enforce_dart_angle is set (the
-///        message names the dart, its angle and the limit); SolverError.
+///        message names the dart, its angle and the limit), or when a dart
+///        cannot be flattened without a fold (names the dart); SolverError.
 Flattening flatten_surface(const TriMesh& mesh, const std::vector<DartSpec>& darts = {},
                            const FlattenOptions& options = {});
 

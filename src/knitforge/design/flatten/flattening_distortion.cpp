@@ -150,6 +150,50 @@ std::vector<double> vertex_distortion_energy(const TriMesh& mesh, const std::vec
   return num;
 }
 
+double patch_max_abs_log_sigma(const TriMesh& mesh, const std::vector<FaceDistortion>& faces, double radius) {
+  const int nf = mesh.num_faces();
+  if (static_cast<int>(faces.size()) != nf) throw InvalidInput("patch_max_abs_log_sigma: one distortion per face needed");
+  if (!(radius >= 0.0) || !std::isfinite(radius))
+    throw InvalidInput("patch_max_abs_log_sigma: the radius must be finite and >= 0");
+  std::vector<Vec3> centre(nf);
+  std::vector<double> area(nf), l1(nf), l2(nf);
+  std::vector<std::vector<int>> vertex_faces(mesh.vertices.size());
+  for (int f = 0; f < nf; ++f) {
+    const auto& t = mesh.faces[f];
+    const Vec3& a = mesh.vertices[t[0]];
+    const Vec3& b = mesh.vertices[t[1]];
+    const Vec3& c = mesh.vertices[t[2]];
+    centre[f] = (a + b + c) / 3.0;
+    area[f] = 0.5 * (b - a).cross(c - a).norm();
+    l1[f] = std::log(std::max(faces[f].sigma1, 1e-300));
+    l2[f] = std::log(std::max(faces[f].sigma2, 1e-300));
+    for (int v : t) vertex_faces[v].push_back(f);
+  }
+  std::vector<int> mark(nf, -1), queue;
+  double best = 0.0;
+  for (int f = 0; f < nf; ++f) {
+    queue.assign(1, f);
+    mark[f] = f;
+    double w = 0.0, m1 = 0.0, m2 = 0.0;
+    for (size_t k = 0; k < queue.size(); ++k) {
+      const int g = queue[k];
+      w += area[g];
+      m1 += area[g] * l1[g];
+      m2 += area[g] * l2[g];
+      for (int v : mesh.faces[g]) {
+        for (int h : vertex_faces[v]) {
+          if (mark[h] == f || (centre[h] - centre[f]).norm() > radius) continue;
+          mark[h] = f;
+          queue.push_back(h);
+        }
+      }
+    }
+    if (w > 0.0) best = std::max({best, std::abs(m1 / w), std::abs(m2 / w)});
+    else best = std::max({best, std::abs(l1[f]), std::abs(l2[f])});
+  }
+  return best;
+}
+
 std::string pattern_svg(const TriMesh& mesh, const std::vector<Vec2>& uv,
                         const std::vector<FaceDistortion>& faces, const std::vector<Vec2>& marks,
                         int max_glyphs) {

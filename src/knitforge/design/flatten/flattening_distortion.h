@@ -9,6 +9,7 @@
 /// Statistics are area-weighted (3D areas) over the natural logarithms of
 /// both singular values of every face, so compression and stretching by the
 /// same factor count the same.
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -39,6 +40,8 @@ struct DistortionStats {
   double area_3d = 0.0;         ///< mm²
   double area_2d = 0.0;         ///< mm² (signed areas summed)
   int flipped_faces = 0;
+  /// The largest |log σ| of any face: the worst stretch or compression.
+  double max_abs_log_sigma() const { return std::max(max_log_sigma, -min_log_sigma); }
 };
 
 /// Per-face distortion of the flattening uv of mesh.
@@ -70,6 +73,15 @@ std::vector<Rgb8> distortion_colours(const std::vector<FaceDistortion>& faces, d
 /// of log² σ1 + log² σ2 (0 for unused vertices). Used to find where darts
 /// help (dart_hints.h).
 std::vector<double> vertex_distortion_energy(const TriMesh& mesh, const std::vector<FaceDistortion>& faces);
+
+/// The largest distortion at the scale of a stitch: for every face, the
+/// area-weighted means of log σ1 and log σ2 over the faces whose centroids
+/// lie within `radius` (mm, 3D) of its centroid, reached through faces
+/// sharing a vertex; the largest |mean| over all faces. A sliver or a dart
+/// tip's few faces cannot dominate it, as they do the per-face maximum
+/// (which grows without bound at a dart tip as the mesh is refined).
+/// \throw InvalidInput when the sizes disagree or radius is negative or not finite.
+double patch_max_abs_log_sigma(const TriMesh& mesh, const std::vector<FaceDistortion>& faces, double radius);
 
 /// An SVG drawing of the 2D pattern (mm, y up): faces coloured as
 /// distortion_colours(), the boundary outlined, direction glyphs (two

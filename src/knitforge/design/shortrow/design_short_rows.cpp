@@ -8,6 +8,7 @@
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/geometry/geodesic_distance.h"
 #include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/geometry/split_nonmanifold_vertices.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/timer.h"
 
@@ -33,6 +34,25 @@ void remove_unused_vertices(StitchMesh& mesh) {
   mesh.vertices = std::move(kept);
 }
 
+/// Gives every stitch fan of a bow-tie vertex its own copy of the vertex
+/// (split_nonmanifold_vertices.h); returns the number of vertices split.
+int split_touching_vertices(StitchMesh& mesh) {
+  std::vector<int> start{0}, corners;
+  for (const Stitch& s : mesh.stitches) {
+    for (int k = 0; k < s.corners(); ++k) corners.push_back(s.v[k]);
+    start.push_back(static_cast<int>(corners.size()));
+  }
+  const VertexFanSplit split = split_nonmanifold_vertices(mesh.num_vertices(), start, corners);
+  if (split.num_split == 0) return 0;
+  for (size_t v = mesh.vertices.size(); v < split.vertex_origin.size(); ++v)
+    mesh.vertices.push_back(mesh.vertices[split.vertex_origin[v]]);
+  for (int s = 0; s < mesh.num_stitches(); ++s) {
+    Stitch& st = mesh.stitches[s];
+    for (int k = 0; k < st.corners(); ++k) st.v[k] = split.face_vertices[start[s] + k];
+  }
+  return split.num_split;
+}
+
 }  // namespace
 
 ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& source,
@@ -42,17 +62,36 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
     if (options.progress) options.progress(name);
   };
   ShortRowDesign d;
-  d.surface_area = total_area(surface);
   Timer t;
 
+  stage("seams");
+  {
+    CutToDiskOptions co;
+    co.source = source;
+    co.cuts = options.cuts;
+    co.seams_on_source = options.seams_on_source;
+    co.longest_source_seam = true;
+    CutToDisk opened = cut_to_disk(surface, co, options.surface_name);
+    d.surface = std::move(opened.mesh);
+    d.source = std::move(opened.source);
+    d.seams = std::move(opened.seams);
+    d.input_boundary_loops = opened.input_boundary_loops;
+    d.input_genus = opened.input_genus;
+    d.source_on_seam = opened.source_on_seam;
+    d.source_seam_candidates = opened.source_seam_candidates;
+  }
+  d.surface_area = total_area(d.surface);
+  d.seconds.seams = t.seconds();
+
   stage("geodesic field");
+  t.reset();
   if (!(std::isfinite(options.field_tolerance) && options.field_tolerance >= 0)) {
     throw InvalidInput(fmt::format("short-row design: field tolerance {} must be finite and >= 0",
                                    options.field_tolerance));
   }
   GeodesicOptions field_options;
   field_options.tolerance = options.field_tolerance * options.params.stitch_width;
-  const GeodesicField field = geodesic_distance(surface, source, field_options);
+  const GeodesicField field = geodesic_distance(d.surface, d.source, field_options);
   d.field = field.distance;
   d.field_signed = field.is_signed;
   d.field_windows = field.num_windows;
@@ -61,7 +100,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
 
   stage("wale curves");
   t.reset();
-  d.wales = compute_wale_curves(surface, d.field, options.params, options.wales);
+  d.wales = compute_wale_curves(d.surface, d.field, options.params, options.wales);
   d.seconds.wales = t.seconds();
 
   stage("tessellation");
@@ -78,6 +117,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   stage("post-processing");
   t.reset();
   remove_unused_vertices(d.stitch_mesh);
+  d.split_vertices = split_touching_vertices(d.stitch_mesh);
   d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
@@ -106,7 +146,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   if (options.evaluate) {
     stage("evaluation");
     t.reset();
-    d.evaluation = evaluate_stitch_mesh(d.stitch_mesh, surface, options.params, options.evaluation);
+    d.evaluation = evaluate_stitch_mesh(d.stitch_mesh, d.surface, options.params, options.evaluation);
     d.seconds.evaluation = t.seconds();
   }
   d.seconds.total = total.seconds();

@@ -357,16 +357,34 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
     const double d = (a[ka] - b[kb]).squaredNorm();
     return wale_tangent(a, ka).dot(wale_tangent(b, kb)) > 0.0 ? d : kInf;
   };
+  // Ties (samples at one position: the two lips of a seam that a wale runs
+  // around, so that its ends meet) go to the sample at the nearest relative
+  // position along the wale, then to the lower index.
+  auto offset = [&](int i, int j) {
+    return std::abs(static_cast<double>(i) / std::max(na, 1) - static_cast<double>(j) / std::max(nb, 1));
+  };
+  // Distances within a hundredth of the stitch height tie: the wale ends on
+  // the two lips of a seam lie that close (up to the field's tolerance).
+  const double tie_mm = 0.01 * o.stitch_height;
+  auto tie = [&](double d, double e) {
+    return d < kInf && e < kInf && std::abs(std::sqrt(d) - std::sqrt(e)) <= tie_mm;
+  };
   std::vector<int> near_b(static_cast<size_t>(na + 1), -1), near_a(static_cast<size_t>(nb + 1), -1);
   for (int i = 0; i <= na; ++i) {
     double best_d = kInf;
-    for (int j = 0; j <= nb; ++j)
-      if (const double d = dist2(i, j); d < best_d) near_b[static_cast<size_t>(i)] = j, best_d = d;
+    int& best = near_b[static_cast<size_t>(i)];
+    for (int j = 0; j <= nb; ++j) {
+      const double d = dist2(i, j);
+      if (tie(d, best_d) ? offset(i, j) < offset(i, best) : d < best_d) best = j, best_d = std::min(d, best_d);
+    }
   }
   for (int j = 0; j <= nb; ++j) {
     double best_d = kInf;
-    for (int i = 0; i <= na; ++i)
-      if (const double d = dist2(i, j); d < best_d) near_a[static_cast<size_t>(j)] = i, best_d = d;
+    int& best = near_a[static_cast<size_t>(j)];
+    for (int i = 0; i <= na; ++i) {
+      const double d = dist2(i, j);
+      if (tie(d, best_d) ? offset(i, j) < offset(best, j) : d < best_d) best = i, best_d = std::min(d, best_d);
+    }
   }
   std::vector<std::array<int, 2>> pairs;
   for (int i = 0; i <= na; ++i) {

@@ -72,18 +72,25 @@ std::pair<int, int> owned_range(const std::vector<int>& owner, int piece) {
 }
 
 /// Even sample of `w` in [lo, hi] nearest to sample k of `v`, among those
-/// where the two wales run the same way (all of them when none does).
-int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const std::vector<Vec3>& v, int k) {
+/// where the two wales run the same way (all of them when none does). Ties
+/// (distances within tie_mm: samples at one position, as the ends of a wale
+/// that runs around on both lips of a seam, which the field places up to
+/// its tolerance apart) go to the sample at the nearest relative position
+/// along the wale, then to the lower index.
+int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const std::vector<Vec3>& v, int k, double tie_mm) {
   int best = -1, any = lo;
   double best_d = std::numeric_limits<double>::infinity(), any_d = best_d;
+  const double at = static_cast<double>(k) / std::max<size_t>(v.size() - 1, 1);
+  auto offset = [&](int m) { return std::abs(static_cast<double>(m) / std::max<size_t>(w.size() - 1, 1) - at); };
+  auto tie = [&](double d, double e) { return std::isfinite(e) && std::abs(std::sqrt(d) - std::sqrt(e)) <= tie_mm; };
   for (int m = lo; m <= hi; m += 2) {
     const double d = (w[m] - v[k]).squaredNorm();
-    if (d < any_d) {
-      any_d = d;
+    if (tie(d, any_d) ? offset(m) < offset(any) : d < any_d) {
+      any_d = std::min(d, any_d);
       any = m;
     }
-    if (d < best_d && same_way(w, m, v, k)) {
-      best_d = d;
+    if ((tie(d, best_d) ? offset(m) < offset(best) : d < best_d) && same_way(w, m, v, k)) {
+      best_d = std::min(d, best_d);
       best = m;
     }
   }
@@ -98,7 +105,7 @@ int nearest_even(const std::vector<Vec3>& w, int lo, int hi, const std::vector<V
 /// to zero. Rounding every such end the same way would add (or remove) about
 /// half a stitch per boundary crossing.
 void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int& a0, int& a1, int& b0,
-                    int& b1, int& carry) {
+                    int& b1, int& carry, double tie_mm) {
   auto trim = [&carry](int n) {  // segments to remove from an overhang of n (even)
     const int lo = 2 * ((n / 2) / 2);
     if ((n / 2) % 2 == 0) return lo;
@@ -111,16 +118,16 @@ void trim_overhangs(const std::vector<Vec3>& a, const std::vector<Vec3>& b, int&
   };
   if (a1 - a0 < 2 || b1 - b0 < 2) return;
   // Bottom ends.
-  const int jb = nearest_even(b, b0, b1, a, a0);
-  const int ia = nearest_even(a, a0, a1, b, b0);
+  const int jb = nearest_even(b, b0, b1, a, a0, tie_mm);
+  const int ia = nearest_even(a, a0, a1, b, b0, tie_mm);
   if (jb > b0) {
     b0 += std::min(trim(jb - b0), b1 - b0 - 2);
   } else if (ia > a0) {
     a0 += std::min(trim(ia - a0), a1 - a0 - 2);
   }
   // Top ends.
-  const int jt = nearest_even(b, b0, b1, a, a1);
-  const int it = nearest_even(a, a0, a1, b, b1);
+  const int jt = nearest_even(b, b0, b1, a, a1, tie_mm);
+  const int it = nearest_even(a, a0, a1, b, b1, tie_mm);
   if (jt < b1) {
     b1 -= std::min(trim(b1 - jt), b1 - b0 - 2);
   } else if (it < a1) {
@@ -208,7 +215,7 @@ WaleTessellation tessellate_wales(const WaleCurves& wales, const KnitParams& par
         auto [b0, b1] = owned_range(upper_owner[q], static_cast<int>(p));
         if (a0 < 0 || b0 < 0) continue;
         const int a0_owned = a0, a1_owned = a1, b0_owned = b0, b1_owned = b1;
-        trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1, trim_carry);
+        trim_overhangs(lower[p].points, upper[q].points, a0, a1, b0, b1, trim_carry, 0.01 * sh);
         StripOptions so;
         so.stitch_width = sw;
         so.stitch_height = sh;
