@@ -5,14 +5,17 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <chrono>
 
 #include <fmt/core.h>
 
 #include "cli_common.h"
 #include "knitforge/body/body_json.h"
 #include "knitforge/body/body_pose.h"
+#include "knitforge/body/fit_body.h"
 #include "knitforge/body/generated_body.h"
 #include "knitforge/body/make_body.h"
+#include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/util/atomic_file.h"
 
@@ -85,10 +88,79 @@ int run_make(const MakeOptions& o) {
   return 0;
 }
 
+struct FitOptions {
+  std::string input;
+  std::string outdir;
+  std::string units = "mm";
+  std::string pose = "a-pose";
+  bool cloud = false;
+  int iterations = BodyFitOptions{}.max_iterations;
+  double max_distance = BodyFitOptions{}.max_distance_mm;
+  bool json = false;
+};
+
+int run_fit(const FitOptions& o) {
+  if (o.outdir.empty()) throw InvalidInput("body fit: give the output directory with -o DIR");
+  const TriMesh scan = load_surface(o.input, o.units);
+  const BodyModel& model = generated_body();
+  BodyFitOptions fo;
+  fo.direction = o.cloud ? BodyFitDirection::ScanToTemplate : BodyFitDirection::TemplateToScan;
+  fo.max_iterations = o.iterations;
+  fo.max_distance_mm = o.max_distance;
+  const BodyParams init = place_on_scan(model, load_pose(model, o.pose), scan);
+  const auto start = std::chrono::steady_clock::now();
+  const BodyFitResult fit = fit_body(model, scan, init, fo);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const BodyMeasurements measured = measure_body(model, shape_body(model, fit.params.shape));
+  const TriMesh body = posed_mesh(model, fit.posed);
+  std::filesystem::create_directories(o.outdir);
+  const std::filesystem::path dir(o.outdir);
+  write_mesh((dir / "fitted.obj").string(), body);
+  nlohmann::json report = body_params_to_json(model, fit.params, &measured);
+  report["fit"] = {{"scan", o.input},
+                   {"objective", o.cloud ? "eq. 5.4 cloud-to-template" : "eq. 5.1 template-to-scan"},
+                   {"rms_mm", fit.rms_mm},
+                   {"initial_rms_mm", fit.initial_rms_mm},
+                   {"iterations", fit.iterations},
+                   {"converged", fit.converged},
+                   {"seconds", seconds},
+                   {"scan_points", scan.num_vertices()}};
+  write_report_json((dir / "params.json").string(), report, o.json);
+  // Per-vertex fit error of the fitted body to the scan surface; for a
+  // point cloud (no faces), of every cloud point to the fitted body.
+  if (!scan.faces.empty()) {
+    const std::vector<double> err = vertex_distances_mm(body, scan);
+    write_file_atomically((dir / "vertex_error.csv").string(), [&](std::ostream& os) {
+      os << "vertex,error_mm,part\n";
+      for (size_t i = 0; i < err.size(); ++i)
+        os << i << ',' << fmt::format("{:.3f}", err[i]) << ',' << body_part_name(model.vertex_parts[i]) << '\n';
+    });
+  } else {
+    const std::vector<double> err = distances_to_surface(body, scan.vertices);
+    write_file_atomically((dir / "vertex_error.csv").string(), [&](std::ostream& os) {
+      os << "scan_point,error_mm\n";
+      for (size_t i = 0; i < err.size(); ++i) os << i << ',' << fmt::format("{:.3f}", err[i]) << '\n';
+    });
+  }
+  const std::vector<BodyPart> parts = scan_vertex_parts(model, fit.posed, scan);
+  write_file_atomically((dir / "scan_parts.csv").string(), [&](std::ostream& os) {
+    os << "scan_vertex,part\n";
+    for (size_t i = 0; i < parts.size(); ++i) os << i << ',' << body_part_name(parts[i]) << '\n';
+  });
+  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations, {:.1f} s; height {:.1f} cm, chest {:.1f}, "
+                   "waist {:.1f}, hip {:.1f} cm -> {}/fitted.obj, params.json, vertex_error.csv, scan_parts.csv",
+                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, seconds, measured[0] / 10.0,
+                   measured[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
+                   measured[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
+                   measured[static_cast<size_t>(Measurement::HipGirth)] / 10.0, o.outdir));
+  return 0;
+}
+
 }  // namespace
 
 void add_body_command(CLI::App& app, Action& action) {
-  auto* body = app.add_subcommand("body", "Bodies for individuals (seed ch. 5): make a body from measurements");
+  auto* body = app.add_subcommand(
+      "body", "Bodies for individuals (seed ch. 5): make a body from measurements, fit it to a scan");
   body->require_subcommand(1);
   auto* make = body->add_subcommand(
       "make",
@@ -114,6 +186,25 @@ void add_body_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(8.0, 60.0));
   make->add_flag("--json", o->json, "Print the parameters and measurements as JSON");
   make->callback([o, &action] { action = [o] { return run_make(*o); }; });
+
+  auto* fit = body->add_subcommand(
+      "fit", "Fit the built-in body to a scan (eq. 5.1) or a partial point cloud (eq. 5.4): shape, pose, translation");
+  auto f = std::make_shared<FitOptions>();
+  fit->add_option("scan", f->input, "Scan mesh (.obj/.ply/.off/.stl), standing upright, z up, facing -y")->required();
+  fit->add_option("-o,--output", f->outdir,
+                  "Output directory: fitted.obj, params.json (parameters, measurements, fit), vertex_error.csv, "
+                  "scan_parts.csv (each scan vertex's garment region)")
+      ->required();
+  fit->add_option("--units", f->units, "Units of the scan: mm (default), cm, m")->check(CLI::IsMember({"mm", "cm", "m"}));
+  fit->add_flag("--cloud", f->cloud,
+                "The scan is a partial view (depth camera): fit the points to the body (eq. 5.4) instead of the "
+                "body to the scan surface (eq. 5.1)");
+  fit->add_option("--pose", f->pose, "Initial pose: " + poses + " (default a-pose), or a parameter JSON file");
+  fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
+  fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")
+      ->check(CLI::PositiveNumber);
+  fit->add_flag("--json", f->json, "Print params.json");
+  fit->callback([f, &action] { action = [f] { return run_fit(*f); }; });
 }
 
 }  // namespace knitforge::cli

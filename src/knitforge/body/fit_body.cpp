@@ -12,6 +12,7 @@
 #include "knitforge/body/body_jacobian.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/geometry/cotan_laplacian.h"
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
@@ -269,6 +270,37 @@ BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyPa
   validate_body_params(model, initial);
   const Fitter fitter(model, scan, initial, options);
   return fitter.run();
+}
+
+BodyParams place_on_scan(const BodyModel& model, const BodyParams& params, const TriMesh& scan) {
+  if (scan.vertices.empty()) throw InvalidInput("place_on_scan: the scan has no points");
+  BodyParams p = params;
+  p.translation_mm = Vec3::Zero();
+  const BoundingBox body = bounding_box(posed_mesh(model, pose_body(model, p)));
+  const BoundingBox target = bounding_box(scan);
+  const Vec3 d = target.center() - body.center();
+  p.translation_mm = {d.x(), d.y(), target.min.z() - body.min.z()};
+  return p;
+}
+
+std::vector<BodyPart> scan_vertex_parts(const BodyModel& model, const PosedBody& posed, const TriMesh& scan) {
+  if (model.vertex_parts.empty())
+    throw InvalidInput(fmt::format("body model '{}' has no part labels to carry onto the scan", model.name));
+  if (static_cast<int>(posed.vertices.size()) != model.num_vertices())
+    throw InvalidInput("scan_vertex_parts: the posed body does not belong to this model");
+  const SurfaceBvh bvh(posed_mesh(model, posed));
+  std::vector<BodyPart> parts(scan.vertices.size());
+  for (size_t i = 0; i < scan.vertices.size(); ++i) {
+    const ClosestPoint cp = bvh.closest_point(scan.vertices[i]);
+    const auto& f = model.faces[static_cast<size_t>(cp.face)];
+    int best = f[0];
+    for (int v : f)
+      if ((posed.vertices[static_cast<size_t>(v)] - cp.point).squaredNorm() <
+          (posed.vertices[static_cast<size_t>(best)] - cp.point).squaredNorm())
+        best = v;
+    parts[i] = model.vertex_parts[static_cast<size_t>(best)];
+  }
+  return parts;
 }
 
 std::vector<double> vertex_distances_mm(const TriMesh& body, const TriMesh& scan) {

@@ -75,6 +75,18 @@ struct BodyFitResult {
 BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyParams& initial,
                        const BodyFitOptions& options = {});
 
+/// `params` with the translation that puts the posed body's bounding box
+/// on the scan's: centres in x and y, lowest points in z (the scan stands
+/// upright, z up, as the model does). The initial guess of `body fit`
+/// without keypoints. \throw InvalidInput for an empty scan.
+BodyParams place_on_scan(const BodyModel& model, const BodyParams& params, const TriMesh& scan);
+
+/// The part of every scan vertex: that of the fitted body's vertex nearest
+/// to the closest point of the fitted surface (the seed's garment regions
+/// carried onto the scan, §5.2.1). \throw InvalidInput when the model has
+/// no part labels or the posed body is not the model's.
+std::vector<BodyPart> scan_vertex_parts(const BodyModel& model, const PosedBody& posed, const TriMesh& scan);
+
 /// Unsigned distance (mm) of every vertex of `body` to `scan`'s surface
 /// (the per-vertex fit error that `body fit` writes).
 /// \throw InvalidInput when the scan has no faces.
