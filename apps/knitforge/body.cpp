@@ -71,6 +71,7 @@ int run_make(const MakeOptions& o) {
   nlohmann::json report = body_params_to_json(*model, body.params, &body.fit.achieved);
   report["targets_mm"] = measurements_to_json(body.fit.targets);
   report["max_measurement_error_mm"] = body.fit.max_error_mm;
+  report["newton_iterations"] = body.fit.iterations;
   report["vertex_parts"] = vertex_part_names(*model);
   report["joints_mm"] = nlohmann::json::object();
   for (int j = 0; j < model->num_joints(); ++j) {
@@ -93,7 +94,7 @@ struct FitOptions {
   std::string outdir;
   std::string units = "mm";
   std::string pose = "a-pose";
-  bool cloud = false;
+  std::string objective = "best";
   int iterations = BodyFitOptions{}.max_iterations;
   double max_distance = BodyFitOptions{}.max_distance_mm;
   bool json = false;
@@ -104,12 +105,17 @@ int run_fit(const FitOptions& o) {
   const TriMesh scan = load_surface(o.input, o.units);
   const BodyModel& model = generated_body();
   BodyFitOptions fo;
-  fo.direction = o.cloud ? BodyFitDirection::ScanToTemplate : BodyFitDirection::TemplateToScan;
+  const bool cloud = o.objective == "cloud";
+  if (!cloud && scan.faces.empty())
+    throw InvalidInput(fmt::format("{}: has no faces; for a point cloud use --objective cloud", o.input));
+  fo.direction = cloud ? BodyFitDirection::ScanToTemplate
+                       : (o.objective == "both" ? BodyFitDirection::Both : BodyFitDirection::TemplateToScan);
   fo.max_iterations = o.iterations;
   fo.max_distance_mm = o.max_distance;
   const BodyParams init = place_on_scan(model, load_pose(model, o.pose), scan);
   const auto start = std::chrono::steady_clock::now();
-  const BodyFitResult fit = fit_body(model, scan, init, fo);
+  const BodyFitResult fit =
+      o.objective == "best" ? fit_body_multistart(model, scan, init, fo) : fit_body(model, scan, init, fo);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const BodyMeasurements measured = measure_body(model, shape_body(model, fit.params.shape));
   const TriMesh body = posed_mesh(model, fit.posed);
@@ -118,7 +124,10 @@ int run_fit(const FitOptions& o) {
   write_mesh((dir / "fitted.obj").string(), body);
   nlohmann::json report = body_params_to_json(model, fit.params, &measured);
   report["fit"] = {{"scan", o.input},
-                   {"objective", o.cloud ? "eq. 5.4 cloud-to-template" : "eq. 5.1 template-to-scan"},
+                   {"objective", cloud ? "eq. 5.4 cloud-to-template"
+                                       : o.objective == "both" ? "eq. 5.1 + eq. 5.4 (both directions)"
+                                       : o.objective == "best" ? "best of three (eq. 5.1; both from it; both), by both directions"
+                                                               : "eq. 5.1 template-to-scan"},
                    {"rms_mm", fit.rms_mm},
                    {"initial_rms_mm", fit.initial_rms_mm},
                    {"iterations", fit.iterations},
@@ -196,9 +205,12 @@ void add_body_command(CLI::App& app, Action& action) {
                   "scan_parts.csv (each scan vertex's garment region)")
       ->required();
   fit->add_option("--units", f->units, "Units of the scan: mm (default), cm, m")->check(CLI::IsMember({"mm", "cm", "m"}));
-  fit->add_flag("--cloud", f->cloud,
-                "The scan is a partial view (depth camera): fit the points to the body (eq. 5.4) instead of the "
-                "body to the scan surface (eq. 5.1)");
+  fit->add_option("--objective", f->objective,
+                  "best (default): three fits (eq. 5.1; both directions from it; both from the initial pose), the "
+                  "one nearest by both distances; scan: eq. 5.1 only (head, hands and feet ignored, as the seed); "
+                  "both: eq. 5.1 + 5.4; cloud: eq. 5.4 only, for a partial view such as a depth camera's (the "
+                  "input's faces, if any, are ignored)")
+      ->check(CLI::IsMember({"best", "scan", "both", "cloud"}));
   fit->add_option("--pose", f->pose, "Initial pose: " + poses + " (default a-pose), or a parameter JSON file");
   fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
   fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")

@@ -25,18 +25,23 @@ BoundingBox box(double lo, double hi) {
   return b;
 }
 
+// One closed, manifold, consistently oriented component of the given genus.
+void expect_closed_surface(const TriMesh& m, int genus) {
+  const SurfaceReport rep = validate_surface(m);
+  ASSERT_TRUE(rep.ok()) << rep.summary();
+  EXPECT_TRUE(rep.manifold);
+  EXPECT_EQ(rep.num_components, 1);
+  EXPECT_EQ(rep.num_boundary_loops, 0);
+  EXPECT_EQ(rep.genus, genus);
+}
+
 TEST(MarchingTetrahedra, SphereIsClosedManifoldGenusZeroWithTheSphereVolume) {
   const double r = 50.0;
   const Vec3 c(1.3, -2.1, 0.7);  // off the grid's symmetry
   const ImplicitFunction f = [&](const Vec3& p) { return (p - c).norm() - r; };
   const double cell = 4.0;
   const TriMesh m = marching_tetrahedra(f, box(-60, 60), cell);
-  const SurfaceReport rep = validate_surface(m);
-  ASSERT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_TRUE(rep.manifold);
-  EXPECT_EQ(rep.num_components, 1);
-  EXPECT_EQ(rep.num_boundary_loops, 0);
-  EXPECT_EQ(rep.genus, 0);
+  expect_closed_surface(m, 0);
   // Every vertex lies on an edge of the grid between an inside and an
   // outside node, where the linear interpolant of f crosses 0: within the
   // chord error of the sphere.
@@ -67,12 +72,7 @@ TEST(MarchingTetrahedra, TorusHasGenusOne) {
     return std::hypot(q, p.z()) - a;
   };
   const TriMesh m = marching_tetrahedra(f, box(-45, 45), 2.5);
-  const SurfaceReport rep = validate_surface(m);
-  ASSERT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_TRUE(rep.manifold);
-  EXPECT_EQ(rep.num_components, 1);
-  EXPECT_EQ(rep.num_boundary_loops, 0);
-  EXPECT_EQ(rep.genus, 1);
+  expect_closed_surface(m, 1);
   const double exact = 2.0 * kPi * kPi * R * a * a;
   EXPECT_NEAR(enclosed_volume(m), exact, 0.03 * exact);
 }
@@ -102,10 +102,7 @@ TEST(MarchingTetrahedra, LargestComponentKeepsTheBiggerOfTwoSpheres) {
   const TriMesh both = marching_tetrahedra(f, box(-45, 45), 2.0);
   EXPECT_EQ(validate_surface(both).num_components, 2);
   const TriMesh big = largest_component(both);
-  const SurfaceReport rep = validate_surface(big);
-  ASSERT_TRUE(rep.ok()) << rep.summary();
-  EXPECT_EQ(rep.num_components, 1);
-  EXPECT_EQ(rep.genus, 0);
+  expect_closed_surface(big, 0);
   for (const Vec3& p : big.vertices) EXPECT_LT(p.x(), 0.0);
   EXPECT_LT(big.num_vertices(), both.num_vertices());
   const double exact = 4.0 / 3.0 * kPi * 15.0 * 15.0 * 15.0;

@@ -45,7 +45,7 @@ class Fitter {
  public:
   Fitter(const BodyModel& model, const TriMesh& scan, const BodyParams& initial, const BodyFitOptions& o)
       : model_(model), scan_(scan), initial_(initial), o_(o), layout_(model) {
-    if (o.direction == BodyFitDirection::TemplateToScan) {
+    if (o.direction != BodyFitDirection::ScanToTemplate) {
       scan_bvh_ = std::make_unique<SurfaceBvh>(scan);
       const std::vector<double> area = mixed_voronoi_areas(model.template_mesh());
       weight_.assign(area.size(), 0.0);
@@ -57,7 +57,8 @@ class Fitter {
       }
       if (!(total > 0.0)) throw InvalidInput("fit_body: the model has no vertex outside the head, hands and feet");
       for (double& w : weight_) w /= total;
-    } else {
+    }
+    if (o.direction != BodyFitDirection::TemplateToScan) {
       const int n = scan.num_vertices();
       const int stride = std::max(1, (n + o.max_cloud_points - 1) / o.max_cloud_points);
       for (int i = 0; i < n; i += stride) cloud_.push_back(scan.vertices[static_cast<size_t>(i)]);
@@ -70,7 +71,7 @@ class Fitter {
     std::vector<double> rows_r;
     std::vector<Eigen::RowVectorXd> rows_a;
     const double dmax = o_.max_distance_mm;
-    if (o_.direction == BodyFitDirection::TemplateToScan) {
+    if (o_.direction != BodyFitDirection::ScanToTemplate) {
       std::vector<int> ids;
       std::vector<Vec3> normals;
       std::vector<double> res;
@@ -103,7 +104,8 @@ class Fitter {
           rows_r.push_back(res[k]);
         }
       }
-    } else {
+    }
+    if (o_.direction != BodyFitDirection::TemplateToScan) {
       const TriMesh body = posed_mesh(model_, L.posed);
       const SurfaceBvh bvh(body);
       const double w = 1.0 / static_cast<double>(cloud_.size());
@@ -264,12 +266,47 @@ BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyPa
   if (scan.vertices.empty()) throw InvalidInput("fit_body: the scan has no points");
   for (size_t i = 0; i < scan.vertices.size(); ++i)
     if (!scan.vertices[i].allFinite()) throw InvalidInput(fmt::format("fit_body: scan point {} is not finite", i));
-  if (options.direction == BodyFitDirection::TemplateToScan && scan.faces.empty())
+  if (options.direction != BodyFitDirection::ScanToTemplate && scan.faces.empty())
     throw InvalidInput("fit_body: template-to-scan fitting (eq. 5.1) needs a scan mesh with faces; for a point "
                        "cloud use the scan-to-template direction (eq. 5.4)");
   validate_body_params(model, initial);
   const Fitter fitter(model, scan, initial, options);
   return fitter.run();
+}
+
+double symmetric_rms_mm(const BodyModel& model, const TriMesh& scan, const BodyParams& params,
+                        const BodyFitOptions& options) {
+  BodyFitOptions o = options;
+  o.direction = BodyFitDirection::Both;
+  const Fitter fitter(model, scan, params, o);
+  const Linearised L = fitter.evaluate(params, false);
+  return L.data_w > 0.0 ? std::sqrt(L.data_sq / L.data_w) : 0.0;
+}
+
+BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, const BodyParams& initial,
+                                  const BodyFitOptions& options) {
+  BodyFitOptions one = options, both = options;
+  one.direction = BodyFitDirection::TemplateToScan;
+  both.direction = BodyFitDirection::Both;
+  std::vector<BodyFitResult> runs;
+  runs.push_back(fit_body(model, scan, initial, one));
+  runs.push_back(fit_body(model, scan, runs[0].params, both));
+  runs.push_back(fit_body(model, scan, initial, both));
+  size_t best = 0;
+  double best_rms = 1e300;
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const double r = symmetric_rms_mm(model, scan, runs[k].params, options);
+    if (r < best_rms) {
+      best_rms = r;
+      best = k;
+    }
+  }
+  BodyFitResult out = runs[best];
+  out.initial_rms_mm = symmetric_rms_mm(model, scan, initial, options);
+  out.rms_mm = best_rms;
+  out.iterations = runs[0].iterations + runs[1].iterations + runs[2].iterations;
+  out.chosen_run = static_cast<int>(best);
+  return out;
 }
 
 BodyParams place_on_scan(const BodyModel& model, const BodyParams& params, const TriMesh& scan) {

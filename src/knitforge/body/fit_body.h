@@ -38,7 +38,11 @@
 namespace knitforge {
 
 /// Which distance the fitter minimises (see the file comment).
-enum class BodyFitDirection { TemplateToScan, ScanToTemplate };
+/// Both: the sum of the two (each normalised to weights summing to 1), the
+/// seed's "or both directions" (L1925): the scan's points then also pull
+/// the parts eq. 5.1 ignores, which keeps limbs from twisting into a wrong
+/// minimum when the initial pose is far.
+enum class BodyFitDirection { TemplateToScan, ScanToTemplate, Both };
 
 /// Options of fit_body().
 struct BodyFitOptions {
@@ -64,6 +68,7 @@ struct BodyFitResult {
   int iterations = 0;
   bool converged = false;     ///< the relative tolerance was reached
   std::vector<double> rms_history_mm;  ///< after each accepted iteration
+  int chosen_run = 0;         ///< fit_body_multistart(): which run won (0, 1, 2)
 };
 
 /// Fits `model` to `scan`, starting from `initial`. For TemplateToScan the
@@ -74,6 +79,23 @@ struct BodyFitResult {
 ///        `initial` not matching the model (naming what).
 BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyParams& initial,
                        const BodyFitOptions& options = {});
+
+/// The rms (mm) of both directions together (eq. 5.1 + 5.4, each with its
+/// weights, pairs beyond options.max_distance_mm ignored) at `params`: the
+/// criterion fit_body_multistart() compares runs by.
+double symmetric_rms_mm(const BodyModel& model, const TriMesh& scan, const BodyParams& params,
+                        const BodyFitOptions& options = {});
+
+/// Three fits, the one with the lowest symmetric_rms_mm() returned (its
+/// rms_mm and initial_rms_mm are then symmetric ones, iterations the sum):
+/// 0: eq. 5.1 from `initial`; 1: both directions from run 0's result;
+/// 2: both directions from `initial`. Each objective alone has cases where
+/// it settles in a wrong minimum from a far initial pose (eq. 5.1: a forearm
+/// whose hand has no weight twists about its axis; both: an arm stretches
+/// to the scan's hand), which the other run avoids. options.direction is
+/// ignored. About three times the cost of one fit. \throw as fit_body().
+BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, const BodyParams& initial,
+                                  const BodyFitOptions& options = {});
 
 /// `params` with the translation that puts the posed body's bounding box
 /// on the scan's: centres in x and y, lowest points in z (the scan stands
