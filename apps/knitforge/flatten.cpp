@@ -107,7 +107,16 @@ void add_flatten_command(CLI::App& app, Action& action) {
       fo.stitch_width = params.stitch_width;
       fo.stitch_height = params.stitch_height;
       fo.enforce_dart_angle = !o->allow_wide;
-      note("[  0 %] flattening without darts ...");
+      // The stage line, repeated with the solver's iteration at most every
+      // 2 s while a stage runs long (the fold-free solver on a large panel).
+      std::string stage = "[  0 %] flattening without darts";
+      Timer since_note;
+      fo.progress = [&](const std::string& what) {
+        if (since_note.seconds() < 2.0) return;
+        note(fmt::format("{}: {} ...", stage, what));
+        since_note.reset();
+      };
+      note(stage + " ...");
       t.reset();
       Flattening plain = flatten_surface(surface, {}, fo);
       const double plain_seconds = t.seconds();
@@ -119,8 +128,10 @@ void add_flatten_command(CLI::App& app, Action& action) {
       std::string auto_stop;
       std::vector<DartSpec> all_darts = darts;
       if (!darts.empty() || o->auto_darts > 0) {
-        note(fmt::format("[ 25 %] flattening with {} dart(s){} ...", darts.size(),
-                         o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : ""));
+        stage = fmt::format("[ 25 %] flattening with {} dart(s){}", darts.size(),
+                            o->auto_darts > 0 ? fmt::format(", adding up to {} more", o->auto_darts) : "");
+        note(stage + " ...");
+        since_note.reset();
         DartHintOptions ho;
         ho.require_lower_maximum = !o->rms_only;
         AutoDarts a = add_darts_automatically(surface, darts, o->auto_darts, fo, ho);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "saddle_dart.h"
+
 #include "knitforge/design/flatten/dart.h"
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/geometry/shapes.h"
@@ -76,10 +78,7 @@ TEST(FlattenDarts, AlignmentHoldsAndDistortionDrops) {
 
 TEST(FlattenDarts, TwoEndDartOnMonkeySaddle) {
   const TriMesh m = monkey_saddle(6.0);
-  DartSpec d;
-  d.type = DartType::TwoEnd;
-  d.orientation = DartOrientation::Vertical;
-  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const DartSpec d = saddle_two_end_dart();
   const CutDarts cut = cut_darts(m, {d});
   const SurfaceReport rep = validate_surface(cut.mesh);
   EXPECT_TRUE(rep.ok() && rep.manifold) << rep.summary();

@@ -1,8 +1,12 @@
 // The flattening never folds (issue: a bumpy disk with --auto-darts 3 gave
 // 13 flipped triangles and max log sigma 3.6, reported as a success).
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include "saddle_dart.h"
 
 #include "knitforge/design/flatten/dart_hints.h"
 #include "knitforge/design/flatten/flatten_surface.h"
@@ -49,6 +53,34 @@ TEST(FlattenInjective, BumpyDiskWhereArapFoldsIsFlattenedWithoutFolds) {
   EXPECT_LT(f.stats.max_abs_log_sigma(), 1.0);
 }
 
+TEST(FlattenInjective, ProgressNamesTheSolverAndItsIteration) {
+  // Progress for a long run: ARAP every 20 iterations, then the fold-free
+  // solver's start and every 5th of its iterations; the same pattern as
+  // without a listener.
+  const TriMesh m = bumpy_disk(30.0, 12.0);
+  std::vector<std::string> told;
+  FlattenOptions opt = three_by_two();
+  opt.progress = [&](const std::string& s) { told.push_back(s); };
+  const Flattening f = flatten_surface(m, {}, opt);
+  const Flattening quiet = flatten_surface(m, {}, three_by_two());
+  EXPECT_EQ(f.uv, quiet.uv);
+  ASSERT_TRUE(f.injective_solver);
+  int arap = 0, start = -1;
+  for (size_t i = 0; i < told.size(); ++i) {
+    if (told[i].rfind("ARAP, iteration ", 0) == 0) {
+      ++arap;
+      EXPECT_EQ(start, -1) << told[i];
+    }
+    if (told[i] == "ARAP folded the pattern: the fold-free solver starts") start = static_cast<int>(i);
+    if (told[i].rfind("fold-free solver, iteration ", 0) == 0) {
+      EXPECT_GE(start, 0) << told[i];
+    }
+  }
+  EXPECT_GE(start, 0);
+  EXPECT_EQ(told.front(), "ARAP, iteration 20 of at most 300");
+  EXPECT_GT(arap, 0);
+}
+
 TEST(FlattenInjective, DartWhereArapFoldsKeepsItsAlignmentWithoutFolds) {
   const TriMesh m = bumpy_disk(30.0, 14.0);
   const Flattening plain = flatten_surface(m, {}, three_by_two());
@@ -83,10 +115,7 @@ TEST(FlattenInjective, AutomaticDartsLowerTheMaximumAndNeverFold) {
 
 TEST(FlattenInjective, ClosedDartsMeshWeldsTheCopiesOfCutVertices) {
   const TriMesh m = monkey_saddle(6.0);
-  DartSpec d;
-  d.type = DartType::TwoEnd;
-  d.orientation = DartOrientation::Vertical;
-  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const DartSpec d = saddle_two_end_dart();
   const CutDarts cut = cut_darts(m, {d});
   ASSERT_EQ(cut.vertex_class.size(), cut.mesh.vertices.size());
   const TriMesh closed = closed_darts_mesh(cut);
@@ -102,10 +131,7 @@ TEST(FlattenInjective, TwoEndDartSlitThroughTheFoldFreeSolver) {
   // slit (two boundary loops): the slit opens, the notches align (from a
   // start that does not align them), nothing folds.
   const TriMesh m = monkey_saddle(6.0);
-  DartSpec d;
-  d.type = DartType::TwoEnd;
-  d.orientation = DartOrientation::Vertical;
-  d.points = {DartWaypoint::at_position(Vec3(0, -20, 0)), DartWaypoint::at_position(Vec3(0, 20, 0))};
+  const DartSpec d = saddle_two_end_dart();
   FlattenOptions opt;
   opt.enforce_dart_angle = false;
   opt.max_arap_log_sigma = 0.0;

@@ -292,6 +292,7 @@ ArapFlattenResult arap_flatten(const TriMesh& mesh, const ArapFlattenOptions& op
     global_step();
     const double next = local_step();
     ++out.iterations;
+    if (options.on_iteration) options.on_iteration(out.iterations);
     const double change = std::abs(energy - next);
     energy = next;
     // With constraints the first step may raise the energy (it enforces them).

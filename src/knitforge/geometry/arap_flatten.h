@@ -24,6 +24,7 @@
 ///
 /// Convergence: stop when the relative energy change between iterations is
 /// below `tolerance` or after max_iterations.
+#include <functional>
 #include <utility>
 #include <vector>
 #include "knitforge/geometry/tri_mesh.h"
@@ -44,6 +45,9 @@ struct ArapFlattenOptions {
   std::vector<std::pair<int, int>> equal_x;
   /// Pairs (a, b): u_a.y == u_b.y (a vertical dart's notches).
   std::vector<std::pair<int, int>> equal_y;
+  /// Called after every iteration with its number (1, 2, ...): progress for
+  /// long runs. May be empty.
+  std::function<void(int)> on_iteration;
 };
 
 struct ArapFlattenResult {

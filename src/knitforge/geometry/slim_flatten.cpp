@@ -18,6 +18,33 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Conjugate gradients on A x = b (A symmetric positive definite) from the
+// given x, preconditioned by the factor M of a nearby matrix. True when the
+// residual falls to 1e-8 of |b| within kMaxSteps steps; x is then the solution.
+bool preconditioned_cg(const SparseMatrix& A, const Eigen::VectorXd& b, const SparseSolver& M, Eigen::VectorXd& x) {
+  constexpr int kMaxSteps = 12;
+  const double goal = 1e-8 * b.norm();
+  Eigen::VectorXd r = b - A * x;
+  if (r.norm() <= goal) return true;
+  Eigen::VectorXd z = M.solve(r);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  for (int k = 0; k < kMaxSteps; ++k) {
+    const Eigen::VectorXd Ap = A * p;
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0.0)) return false;
+    const double alpha = rz / pAp;
+    x += alpha * p;
+    r -= alpha * Ap;
+    if (r.norm() <= goal) return true;
+    z = M.solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return false;
+}
+
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Per face: 3D area and the gradients g_j of the linear basis functions in
@@ -272,8 +299,22 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
     }
     SparseMatrix A(num_unknowns, num_unknowns);
     A.setFromTriplets(trip.begin(), trip.end());
-    solver.refactor(A);  // same pattern every iteration: the ordering is computed once
-    const Eigen::VectorXd x = solver.solve(rhs);
+    // The proxy changes little from one iteration to the next: its minimiser
+    // is found by conjugate gradients preconditioned with the factor of an
+    // earlier proxy, from the current map; a new factor only when that does
+    // not converge within a few steps. The step is cut for injectivity and
+    // must lower the energy below either way, so an inexact solve is safe.
+    Eigen::VectorXd x(num_unknowns);
+    for (int v = 0; v < n; ++v) {
+      for (int d = 0; d < 2; ++d) {
+        if (const int i = var(v, d); i >= 0) x[i] = uv[v][d];
+      }
+    }
+    const bool solved = solver.factored() && preconditioned_cg(A, rhs, solver, x);
+    if (!solved) {
+      solver.refactor(A);  // same pattern every iteration: the ordering is computed once
+      x = solver.solve(rhs);
+    }
 
     // Direction towards the proxy minimiser, cut before the first degenerate triangle.
     std::vector<Vec2> dir(uv.size(), Vec2::Zero());
@@ -301,6 +342,7 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
       step *= 0.5;
     }
     ++out.iterations;
+    if (options.on_iteration) options.on_iteration(out.iterations);
     if (!feasible && !(step > 1e-12)) break;  // the constraints cannot be approached without a fold
     if (!std::isfinite(e_next) || (feasible && e_next > energy)) {
       out.converged = true;  // no descent left at this resolution

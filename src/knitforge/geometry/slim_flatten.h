@@ -29,6 +29,7 @@
 /// met without a fold), the result says so (constraints_met false).
 ///
 /// Used by flatten_surface() where the ARAP flattening (arap_flatten.h) folds.
+#include <functional>
 #include <utility>
 #include <vector>
 #include "knitforge/geometry/tri_mesh.h"
@@ -48,6 +49,9 @@ struct SlimFlattenOptions {
   /// Pairs (a, b): u_a.x == u_b.x, and u_a.y == u_b.y (as arap_flatten()).
   std::vector<std::pair<int, int>> equal_x;
   std::vector<std::pair<int, int>> equal_y;
+  /// Called after every iteration with its number (1, 2, ...): progress for
+  /// long runs. May be empty.
+  std::function<void(int)> on_iteration;
 };
 
 struct SlimFlattenResult {

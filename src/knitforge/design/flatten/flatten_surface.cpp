@@ -118,6 +118,11 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
 
   ArapFlattenOptions arap;
   arap.max_iterations = options.max_iterations;
+  if (options.progress) {
+    arap.on_iteration = [&](int it) {
+      if (it % 20 == 0) options.progress(fmt::format("ARAP, iteration {} of at most {}", it, arap.max_iterations));
+    };
+  }
   arap.tolerance = options.tolerance;
   arap.initial = tutte_embedding(out.mesh).uv;
   const std::vector<Vec2> tutte = arap.initial;
@@ -154,6 +159,14 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
     slim.max_iterations = options.max_iterations;
     slim.equal_x = arap.equal_x;
     slim.equal_y = arap.equal_y;
+    if (options.progress) {
+      options.progress("ARAP folded the pattern: the fold-free solver starts");
+      slim.on_iteration = [&](int it) {
+        if (it % 5 == 0) {
+          options.progress(fmt::format("fold-free solver, iteration {} of at most {}", it, slim.max_iterations));
+        }
+      };
+    }
     const SlimFlattenResult s = slim_flatten(out.mesh, slim);
     out.iterations += s.iterations;
     if (!s.constraints_met && folded) {

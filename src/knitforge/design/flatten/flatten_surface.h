@@ -24,6 +24,8 @@
 /// (area-weighted) normal, with x along the projection of the world x axis
 /// (world y if x is nearly parallel to the normal). For the built-in shapes
 /// (z up) the pattern's x and y follow the world x and y.
+#include <functional>
+#include <string>
 #include <vector>
 #include "knitforge/design/flatten/dart.h"
 #include "knitforge/design/flatten/flattening_distortion.h"
@@ -46,6 +48,9 @@ struct FlattenOptions {
   /// (|log σ| > 1.1: a factor of 3) nearly folds; it is recomputed by the
   /// injective solver, whose pattern is kept when its largest |log σ| is lower.
   double max_arap_log_sigma = 1.1;
+  /// Told, now and then, which solver runs and its iteration ("ARAP,
+  /// iteration 40 of at most 300"): progress for long runs. May be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// A flattened surface.
