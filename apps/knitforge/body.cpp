@@ -67,6 +67,10 @@ int run_make(const MakeOptions& o) {
   }
   const BodyParams pose = load_pose(*model, o.pose);
   const MadeBody body = make_body(*model, targets, pose);
+  for (const std::string& file : {o.output, o.params}) {
+    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+    if (!file.empty() && !parent.empty()) std::filesystem::create_directories(parent);
+  }
   write_mesh(o.output, body.mesh);
   nlohmann::json report = body_params_to_json(*model, body.params, &body.fit.achieved);
   report["targets_mm"] = measurements_to_json(body.fit.targets);
@@ -156,12 +160,12 @@ int run_fit(const FitOptions& o) {
     os << "scan_vertex,part\n";
     for (size_t i = 0; i < parts.size(); ++i) os << i << ',' << body_part_name(parts[i]) << '\n';
   });
-  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations, {:.1f} s; height {:.1f} cm, chest {:.1f}, "
-                   "waist {:.1f}, hip {:.1f} cm -> {}/fitted.obj, params.json, vertex_error.csv, scan_parts.csv",
-                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, seconds, measured[0] / 10.0,
+  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations; height {:.1f} cm, chest {:.1f}, waist "
+                   "{:.1f}, hip {:.1f} cm; {:.1f} s -> {}/fitted.obj, params.json, vertex_error.csv, scan_parts.csv",
+                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, measured[0] / 10.0,
                    measured[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
                    measured[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
-                   measured[static_cast<size_t>(Measurement::HipGirth)] / 10.0, o.outdir));
+                   measured[static_cast<size_t>(Measurement::HipGirth)] / 10.0, seconds, o.outdir));
   return 0;
 }
 
