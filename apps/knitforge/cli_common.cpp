@@ -21,6 +21,8 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/evaluate/scalar_colours.h"
+#include "knitforge/evaluate/stitch_distortion.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/prepare_surface.h"
 #include "knitforge/geometry/shapes.h"
@@ -453,6 +455,67 @@ nlohmann::json design_machine_end(const DesignMachineOptions& o, const std::stri
   }
 }
 
+int machine_exit_code(bool machine_ok, const std::string& machine) {
+  if (!machine_ok) {
+    note(fmt::format("the design is NOT knittable on machine '{}' (details in report.json, machine_knittability)",
+                     machine));
+    return 1;
+  }
+  note("knittable: the map passes every check");
+  return 0;
+}
+
+std::string shape_name_list() {
+  std::string names;
+  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
 void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }
+
+void write_coloured_stitches(const std::string& path, const StitchMesh& mesh, const std::vector<double>& value,
+                             double hi) {
+  TriMesh tri;
+  tri.vertices = mesh.vertices;
+  MeshWriteOptions w;
+  const std::vector<Rgb8> colour = scalar_colours(value, 0.0, hi > 0 ? hi : 1.0);
+  for (int s = 0; s < mesh.num_stitches(); ++s) {
+    const Stitch& st = mesh.stitches[s];
+    for (int k = 1; k + 1 < st.corners(); ++k) {
+      tri.faces.push_back({st.v[0], st.v[k], st.v[k + 1]});
+      w.face_colours.push_back({colour[s][0], colour[s][1], colour[s][2]});
+    }
+  }
+  write_mesh(path, tri, w);
+}
+
+void write_evaluation_files(const std::string& dir, const StitchMesh& designed, const StitchMeshEvaluation& ev,
+                            bool ascii) {
+  const std::filesystem::path d(dir);
+  StitchMeshPlyOptions relaxed;
+  relaxed.ascii = ascii;
+  relaxed.scalars.push_back({"shape_error", ev.stitch_error});
+  relaxed.scalars.push_back({"distortion", distortion_values(ev.relaxed_distortion)});
+  write_stitch_mesh_ply((d / "relaxed.ply").string(), ev.relaxed, relaxed);
+  write_coloured_stitches((d / "shape_error.ply").string(), ev.relaxed, ev.stitch_error, ev.stitch_error_stats.max);
+  write_coloured_stitches((d / "distortion.ply").string(), designed, distortion_values(ev.designed_distortion),
+                          ev.designed_distortion_stats.max);
+}
+
+nlohmann::json evaluation_json(const StitchMeshEvaluation& ev) {
+  return {{"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
+          {"shape_error_relative", {{"rms", ev.relative_rms_error}, {"max", ev.relative_max_error}}},
+          {"part_size_mm", ev.target_size},
+          {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
+          {"relaxation",
+           {{"iterations", ev.relax_iterations},
+            {"converged", ev.relax_converged},
+            {"energy_start", ev.relax_energy_start},
+            {"energy_end", ev.relax_energy_end}}},
+          {"correspondence_rms_mm", ev.correspondence_rms},
+          {"stitch_error_mm", scalar_stats_json(ev.stitch_error_stats)},
+          {"distortion_designed", scalar_stats_json(ev.designed_distortion_stats)},
+          {"distortion_relaxed", scalar_stats_json(ev.relaxed_distortion_stats)}};
+}
 
 }  // namespace knitforge::cli

@@ -13,6 +13,7 @@
 #include "knitforge/core/knit_params.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/evaluate/evaluate_stitch_mesh.h"
 #include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/geometry/cut_to_disk.h"
 #include "knitforge/geometry/geodesic_source.h"
@@ -39,6 +40,7 @@ void add_instructions_command(CLI::App& app, Action& action);
 void add_flatten_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_shortrow_command(CLI::App& app, Action& action);
+void add_shortcolumn_command(CLI::App& app, Action& action);
 void add_report_command(CLI::App& app, Action& action);
 void add_support_command(CLI::App& app, Action& action);
 void add_close_command(CLI::App& app, Action& action);
@@ -118,6 +120,9 @@ bool is_stitch_mesh_ply(const std::string& path);
 /// \throw IOError when it cannot be read.
 std::string read_text_file(const std::string& path, const std::string& what = "file");
 
+/// The built-in shape names, comma-separated (for help texts).
+std::string shape_name_list();
+
 /// Reads a triangle mesh and scales it to millimetres.
 TriMesh load_surface(const std::string& path, const std::string& units);
 
@@ -187,6 +192,23 @@ void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& options);
 nlohmann::json design_machine_end(const DesignMachineOptions& options, const std::string& outdir,
                                   const KnittingMap& map, bool map_knittable, const StitchMesh* designed,
                                   bool& machine_ok, nlohmann::json& machine_check);
+
+/// The stitch mesh as triangles with one colour per stitch (viridis of
+/// `value` over [0, hi]), for viewing (distortion.ply, shape_error.ply).
+void write_coloured_stitches(const std::string& path, const StitchMesh& mesh, const std::vector<double>& value,
+                             double hi);
+
+/// The evaluation outputs of a design command in `dir`: relaxed.ply,
+/// shape_error.ply, distortion.ply; and the "evaluation" section of
+/// report.json.
+void write_evaluation_files(const std::string& dir, const StitchMesh& designed, const StitchMeshEvaluation& ev,
+                            bool ascii);
+nlohmann::json evaluation_json(const StitchMeshEvaluation& ev);
+
+/// The end of a design command whose map passed its own checks: notes
+/// whether it is knittable on `machine` too (design_machine_end()'s
+/// machine_ok) and returns the exit code, 0 or 1.
+int machine_exit_code(bool machine_ok, const std::string& machine);
 
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);

@@ -49,8 +49,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   cmd->add_option("input", o->input,
                   "Surface mesh (.obj/.ply/.off/.stl), a disk, or a built-in shape: " + names)
       ->required();
@@ -328,13 +327,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
         note("the map is NOT knittable (details in report.json); outputs were written for inspection");
         return 1;
       }
-      if (!machine_ok) {
-        note(fmt::format("the design is NOT knittable on machine '{}' (details in report.json, machine_knittability)",
-                         o->mach.machine));
-        return 1;
-      }
-      note("knittable: the map passes every check");
-      return 0;
+      return machine_exit_code(machine_ok, o->mach.machine);
     };
   });
 }

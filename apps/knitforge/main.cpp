@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   cli::add_flatten_command(app, action);
   cli::add_render_command(app, action);
   cli::add_shortrow_command(app, action);
+  cli::add_shortcolumn_command(app, action);
   cli::add_report_command(app, action);
   cli::add_support_command(app, action);
   cli::add_close_command(app, action);

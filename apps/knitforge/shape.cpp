@@ -17,8 +17,7 @@ void add_shape_command(CLI::App& app, Action& action) {
   auto output = std::make_shared<std::string>();
   auto edge = std::make_shared<double>(kDefaultShapeEdgeLength);
   auto list = std::make_shared<bool>(false);
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   cmd->add_option("name", *name, "Shape name: " + names);
   cmd->add_option("-o,--output", *output, "Output mesh (.obj, .ply)");
   cmd->add_option("--edge", *edge, "Target edge length of the triangulation (mm)")

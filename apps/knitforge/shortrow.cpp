@@ -26,6 +26,7 @@
 #include "knitforge/io/polyline_obj.h"
 #include "knitforge/report/report_html.h"
 #include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/util/number_list.h"
 #include "knitforge/util/timer.h"
 
 namespace knitforge::cli {
@@ -33,19 +34,7 @@ namespace knitforge::cli {
 namespace {
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InvalidInput(fmt::format("--source {}: '{}' is not a number", what, item));
-    }
-  }
-  return out;
+  return parse_number_list(text, "--source " + what);
 }
 
 /// An index given as a number of --source: a whole number in [0, 2^31).
@@ -112,23 +101,6 @@ GeodesicSource parse_source(const TriMesh& mesh, const std::string& text, double
                   text, kind));
 }
 
-/// The stitch mesh as triangles with one colour per stitch (for viewing).
-void write_coloured_stitches(const std::string& path, const StitchMesh& mesh,
-                             const std::vector<double>& value, double hi) {
-  TriMesh tri;
-  tri.vertices = mesh.vertices;
-  MeshWriteOptions w;
-  const std::vector<Rgb8> colour = scalar_colours(value, 0.0, hi > 0 ? hi : 1.0);
-  for (int s = 0; s < mesh.num_stitches(); ++s) {
-    const Stitch& st = mesh.stitches[s];
-    for (int k = 1; k + 1 < st.corners(); ++k) {
-      tri.faces.push_back({st.v[0], st.v[k], st.v[k + 1]});
-      w.face_colours.push_back({colour[s][0], colour[s][1], colour[s][2]});
-    }
-  }
-  write_mesh(path, tri, w);
-}
-
 }  // namespace
 
 void add_shortrow_command(CLI::App& app, Action& action) {
@@ -145,8 +117,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   cmd->add_option("input", o->input, "Surface mesh (.obj/.ply/.off/.stl) or a built-in shape: " + names)
       ->required();
   cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
@@ -274,29 +245,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       }
       nlohmann::json report;
       if (d.evaluation) {
-        const StitchMeshEvaluation& ev = *d.evaluation;
-        StitchMeshPlyOptions relaxed = ply;
-        relaxed.scalars.push_back({"shape_error", ev.stitch_error});
-        relaxed.scalars.push_back({"distortion", distortion_values(ev.relaxed_distortion)});
-        write_stitch_mesh_ply(out("relaxed.ply"), ev.relaxed, relaxed);
-        write_coloured_stitches(out("shape_error.ply"), ev.relaxed, ev.stitch_error,
-                                ev.stitch_error_stats.max);
-        write_coloured_stitches(out("distortion.ply"), d.stitch_mesh, designed_distortion,
-                                ev.designed_distortion_stats.max);
-        report["evaluation"] = {
-            {"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
-            {"shape_error_relative", {{"rms", ev.relative_rms_error}, {"max", ev.relative_max_error}}},
-            {"part_size_mm", ev.target_size},
-            {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
-            {"relaxation",
-             {{"iterations", ev.relax_iterations},
-              {"converged", ev.relax_converged},
-              {"energy_start", ev.relax_energy_start},
-              {"energy_end", ev.relax_energy_end}}},
-            {"correspondence_rms_mm", ev.correspondence_rms},
-            {"stitch_error_mm", scalar_stats_json(ev.stitch_error_stats)},
-            {"distortion_designed", scalar_stats_json(ev.designed_distortion_stats)},
-            {"distortion_relaxed", scalar_stats_json(ev.relaxed_distortion_stats)}};
+        write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
+        report["evaluation"] = evaluation_json(*d.evaluation);
       }
       const auto types = count_stitch_types(d.stitch_mesh);
       const int short_row_ends = types[static_cast<int>(StitchType::ShortRowLeft)] +
@@ -419,13 +369,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         }
         return 1;
       }
-      if (!machine_ok) {
-        note(fmt::format("the design is NOT knittable on machine '{}' (details in report.json, machine_knittability)",
-                         o->mach.machine));
-        return 1;
-      }
-      note("knittable: the map passes every check");
-      return 0;
+      return machine_exit_code(machine_ok, o->mach.machine);
     };
   });
 }

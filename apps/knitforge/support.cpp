@@ -19,8 +19,7 @@ namespace knitforge::cli {
 namespace {
 
 std::string shape_list() {
-  std::string names;
-  for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = shape_name_list();
   return names;
 }
 

@@ -29,4 +29,23 @@ std::array<int, kNumStitchTypes> count_stitch_types(const StitchMesh& mesh) {
   return n;
 }
 
+int remove_unused_vertices(StitchMesh& mesh) {
+  std::vector<int> index(static_cast<size_t>(mesh.num_vertices()), -1);
+  for (const Stitch& s : mesh.stitches) {
+    for (int k = 0; k < s.corners(); ++k) index[static_cast<size_t>(s.v[k])] = 0;
+  }
+  std::vector<Vec3> kept;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (index[static_cast<size_t>(v)] < 0) continue;
+    index[static_cast<size_t>(v)] = static_cast<int>(kept.size());
+    kept.push_back(mesh.vertices[static_cast<size_t>(v)]);
+  }
+  for (Stitch& s : mesh.stitches) {
+    for (int k = 0; k < s.corners(); ++k) s.v[k] = index[static_cast<size_t>(s.v[k])];
+  }
+  const int dropped = mesh.num_vertices() - static_cast<int>(kept.size());
+  mesh.vertices = std::move(kept);
+  return dropped;
+}
+
 }  // namespace knitforge

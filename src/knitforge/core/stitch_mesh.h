@@ -57,4 +57,8 @@ Vec3 stitch_centroid(const StitchMesh& mesh, int stitch);
 /// Counts of stitches by type, indexed by StitchType.
 std::array<int, kNumStitchTypes> count_stitch_types(const StitchMesh& mesh);
 
+/// Drops the vertices no stitch uses, keeping the order of the others (in
+/// place). Returns the number dropped.
+int remove_unused_vertices(StitchMesh& mesh);
+
 }  // namespace knitforge

@@ -1,6 +1,8 @@
 #include "knitforge/geometry/sparse_solver.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/CholmodSupport>
 #include <fmt/core.h>
@@ -17,6 +19,9 @@ struct SparseSolver::Impl {
   int n = 0;
   long nnz = -1;  // of the analysed pattern
   bool ok = false;
+  bool analyzed = false;
+  // Pattern of analyze() (column starts and row indices, lower triangle).
+  std::vector<SparseMatrix::StorageIndex> outer, inner;
   Impl() {
     // The library never prints: silence CHOLMOD's own error/warning output,
     // failures are reported through info() below.
@@ -31,14 +36,16 @@ SparseSolver::~SparseSolver() = default;
 SparseSolver::SparseSolver(SparseSolver&&) noexcept = default;
 SparseSolver& SparseSolver::operator=(SparseSolver&&) noexcept = default;
 
-void SparseSolver::factor(const SparseMatrix& A) {
-  if (!impl_) impl_ = std::make_unique<Impl>();
-  impl_->ok = false;
-  impl_->n = 0;
+namespace {
+
+void check_square(const SparseMatrix& A) {
   if (A.rows() != A.cols()) {
     throw InvalidInput(fmt::format("sparse solver: matrix is {} x {}, it must be square", A.rows(), A.cols()));
   }
   if (A.rows() == 0) throw InvalidInput("sparse solver: matrix is empty");
+}
+
+void check_finite(const SparseMatrix& A) {
   for (int k = 0; k < A.outerSize(); ++k) {
     for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
       if (!std::isfinite(it.value())) {
@@ -46,6 +53,64 @@ void SparseSolver::factor(const SparseMatrix& A) {
       }
     }
   }
+}
+
+/// The lower triangle of A, compressed (the pattern CHOLMOD sees).
+SparseMatrix lower_part(const SparseMatrix& A) {
+  SparseMatrix L = A.triangularView<Eigen::Lower>();
+  L.makeCompressed();
+  return L;
+}
+
+}  // namespace
+
+void SparseSolver::analyze(const SparseMatrix& pattern) {
+  if (!impl_) impl_ = std::make_unique<Impl>();
+  impl_->ok = false;
+  impl_->analyzed = false;
+  impl_->n = 0;
+  check_square(pattern);
+  const SparseMatrix L = lower_part(pattern);
+  impl_->llt.analyzePattern(L);
+  impl_->outer.assign(L.outerIndexPtr(), L.outerIndexPtr() + L.outerSize() + 1);
+  impl_->inner.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
+  impl_->n = static_cast<int>(pattern.rows());
+  impl_->analyzed = true;
+}
+
+namespace {
+
+/// refactor() after analyze(): the exact analysed pattern.
+void refactor_analyzed(Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>& llt, int n,
+                       const std::vector<SparseMatrix::StorageIndex>& outer,
+                       const std::vector<SparseMatrix::StorageIndex>& inner, const SparseMatrix& A, bool& ok) {
+  if (A.rows() != n || A.cols() != n) {
+    throw InvalidInput(fmt::format("sparse solver: refactor() of a {} x {} matrix, analyzed {} x {}", A.rows(),
+                                   A.cols(), n, n));
+  }
+  check_finite(A);
+  const SparseMatrix L = lower_part(A);
+  if (!std::equal(outer.begin(), outer.end(), L.outerIndexPtr()) ||
+      static_cast<size_t>(L.nonZeros()) != inner.size() || !std::equal(inner.begin(), inner.end(), L.innerIndexPtr())) {
+    throw InvalidInput("sparse solver: refactor() of a matrix whose pattern differs from the analyzed one");
+  }
+  llt.factorize(L);
+  if (llt.info() != Eigen::Success) {
+    throw SolverError(fmt::format("sparse solver: the {} x {} matrix is not positive definite (CHOLMOD status {})",
+                                  A.rows(), A.cols(), llt.cholmod().status));
+  }
+  ok = true;
+}
+
+}  // namespace
+
+void SparseSolver::factor(const SparseMatrix& A) {
+  if (!impl_) impl_ = std::make_unique<Impl>();
+  impl_->ok = false;
+  impl_->analyzed = false;
+  impl_->n = 0;
+  check_square(A);
+  check_finite(A);
   impl_->llt.compute(A);  // reads the lower triangle only
   impl_->nnz = A.nonZeros();
   if (impl_->llt.info() != Eigen::Success) {
@@ -60,6 +125,11 @@ void SparseSolver::factor(const SparseMatrix& A) {
 }
 
 void SparseSolver::refactor(const SparseMatrix& A) {
+  if (impl_ && impl_->analyzed) {
+    impl_->ok = false;
+    refactor_analyzed(impl_->llt, impl_->n, impl_->outer, impl_->inner, A, impl_->ok);
+    return;
+  }
   if (!impl_ || !impl_->ok || A.rows() != impl_->n || A.cols() != impl_->n || A.nonZeros() != impl_->nnz) {
     factor(A);
     return;

@@ -38,8 +38,19 @@ class SparseSolver {
   /// successful factor()/refactor() (same size and non-zeros): the symbolic
   /// analysis (ordering) is reused, only the numeric factor is recomputed.
   /// Falls back to factor() when there is none or the size or non-zero count
-  /// differs. \throw as factor().
+  /// differs. After analyze(), A must have exactly the analysed pattern
+  /// (same nonzero positions, explicit zeros included); no fallback then.
+  /// \throw as factor(); after analyze(), InvalidInput when A has another
+  ///        size or pattern.
   void refactor(const SparseMatrix& A);
+
+  /// Symbolic analysis only (fill-reducing ordering, elimination tree) of
+  /// the pattern of A (its values are not read), for refactor(): a caller
+  /// that factors many matrices with one sparsity pattern (a Laplacian with
+  /// changing Dirichlet rows kept as explicit zeros) pays the ordering once.
+  /// Drops any previous factor.
+  /// \throw InvalidInput when A is not square or empty.
+  void analyze(const SparseMatrix& pattern);
 
   bool factored() const;
   /// Size of the factored matrix (0 before factor()).

@@ -8,52 +8,11 @@
 #include "knitforge/convert/stitch_mesh_to_map.h"
 #include "knitforge/geometry/geodesic_distance.h"
 #include "knitforge/geometry/mesh_measures.h"
-#include "knitforge/geometry/split_nonmanifold_vertices.h"
+#include "knitforge/design/shortrow/finish_stitch_mesh.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/timer.h"
 
 namespace knitforge {
-
-namespace {
-
-/// Drops vertices no stitch uses, keeping the order of the others.
-void remove_unused_vertices(StitchMesh& mesh) {
-  std::vector<int> index(mesh.num_vertices(), -1);
-  for (const Stitch& s : mesh.stitches) {
-    for (int k = 0; k < s.corners(); ++k) index[s.v[k]] = 0;
-  }
-  std::vector<Vec3> kept;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (index[v] < 0) continue;
-    index[v] = static_cast<int>(kept.size());
-    kept.push_back(mesh.vertices[v]);
-  }
-  for (Stitch& s : mesh.stitches) {
-    for (int k = 0; k < s.corners(); ++k) s.v[k] = index[s.v[k]];
-  }
-  mesh.vertices = std::move(kept);
-}
-
-/// Gives every stitch fan of a bow-tie vertex its own copy of the vertex
-/// (split_nonmanifold_vertices.h); returns the number of vertices split.
-int split_touching_vertices(StitchMesh& mesh) {
-  std::vector<int> start{0}, corners;
-  for (const Stitch& s : mesh.stitches) {
-    for (int k = 0; k < s.corners(); ++k) corners.push_back(s.v[k]);
-    start.push_back(static_cast<int>(corners.size()));
-  }
-  const VertexFanSplit split = split_nonmanifold_vertices(mesh.num_vertices(), start, corners);
-  if (split.num_split == 0) return 0;
-  for (size_t v = mesh.vertices.size(); v < split.vertex_origin.size(); ++v)
-    mesh.vertices.push_back(mesh.vertices[split.vertex_origin[v]]);
-  for (int s = 0; s < mesh.num_stitches(); ++s) {
-    Stitch& st = mesh.stitches[s];
-    for (int k = 0; k < st.corners(); ++k) st.v[k] = split.face_vertices[start[s] + k];
-  }
-  return split.num_split;
-}
-
-}  // namespace
 
 ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& source,
                                  const ShortRowOptions& options) {
@@ -121,26 +80,7 @@ ShortRowDesign design_short_rows(const TriMesh& surface, const GeodesicSource& s
   d.boundary_quads = boundary_apex_quads(d.stitch_mesh);
   d.seconds.post_processing = t.seconds();
 
-  stage("courses");
-  t.reset();
-  d.courses = order_courses(d.stitch_mesh);
-  d.seconds.courses = t.seconds();
-
-  stage("knitting map");
-  t.reset();
-  try {
-    d.map = stitch_mesh_to_map(d.stitch_mesh);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(
-        fmt::format("short-row design: the stitch mesh cannot be laid out as a knitting map: {}", e.what()));
-  }
-  d.seconds.map = t.seconds();
-
-  stage("knittability");
-  t.reset();
-  d.mesh_check = check_knittability(d.stitch_mesh);
-  d.map_check = check_knittability(d.map, options.params);
-  d.seconds.check = t.seconds();
+  map_stages_into(d, options.params, "short-row design", stage);
   d.apex_spacing = apex_spacing(d.stitch_mesh);
 
   if (options.evaluate) {

@@ -83,6 +83,40 @@ class Strip {
         s.bridges = {{k, l + 1}, {k, l + 2}};
         s.apexes = {vid_a(k)};
         break;
+      // Short-column ends: the first (last) quad of an AB-, B- or BB-advance
+      // becomes the Increase (Decrease).
+      case StripOperator::Increase:
+      case StripOperator::IncreaseDecrease:
+        if (i != 0 || j != 0) return false;
+        s.di = 1, s.dj = 1;
+        s.bridges = op == StripOperator::Increase ? std::vector<Bridge>{{1, 1}, {2, 2}} : std::vector<Bridge>{{1, 1}};
+        break;
+      case StripOperator::IncreaseB:
+        if (i != 0 || j != 0) return false;
+        s.di = 1, s.dj = 2;
+        s.bridges = {{1, 1}, {1, 2}, {1, 3}, {2, 4}};
+        s.apexes = {vid_a(1)};
+        break;
+      case StripOperator::IncreaseBB:
+        if (i != 0 || j != 0) return false;
+        s.di = 1, s.dj = 3;
+        s.bridges = {{1, 1}, {1, 2}, {1, 3}, {1, 4}, {1, 5}, {2, 6}};
+        s.apexes = {vid_a(1), vid_a(1)};
+        break;
+      case StripOperator::Decrease:
+        s.di = 1, s.dj = 1;
+        s.bridges = {{k + 1, l + 1}};
+        break;
+      case StripOperator::DecreaseB:
+        s.di = 1, s.dj = 2;
+        s.bridges = {{k + 1, l + 1}, {k + 1, l + 2}, {k + 1, l + 3}};
+        s.apexes = {vid_a(k + 1)};
+        break;
+      case StripOperator::DecreaseBB:
+        s.di = 1, s.dj = 3;
+        s.bridges = {{k + 1, l + 1}, {k + 1, l + 2}, {k + 1, l + 3}, {k + 1, l + 4}, {k + 1, l + 5}};
+        s.apexes = {vid_a(k + 1), vid_a(k + 1)};
+        break;
     }
     return i + s.di <= na_ && j + s.dj <= nb_;
   }
@@ -129,6 +163,40 @@ class Strip {
         left(k, l);
         left(k, l + 1);
         break;
+      case StripOperator::Increase:
+        add(StitchType::Increase, {vid_a(0), vid_b(1), vid_a(1), -1});
+        quad(1, 1);
+        break;
+      case StripOperator::IncreaseB:
+        add(StitchType::Increase, {vid_a(0), vid_b(1), vid_a(1), -1});
+        left(1, 1);
+        left(1, 2);
+        quad(1, 3);
+        break;
+      case StripOperator::IncreaseBB:
+        add(StitchType::Increase, {vid_a(0), vid_b(1), vid_a(1), -1});
+        for (int m = 1; m <= 4; ++m) left(1, m);
+        quad(1, 5);
+        break;
+      case StripOperator::Decrease:
+        quad(k, l);
+        add(StitchType::Decrease, {vid_a(k + 1), vid_b(l + 1), vid_a(k + 2), -1});
+        break;
+      case StripOperator::DecreaseB:
+        quad(k, l);
+        left(k + 1, l + 1);
+        left(k + 1, l + 2);
+        add(StitchType::Decrease, {vid_a(k + 1), vid_b(l + 3), vid_a(k + 2), -1});
+        break;
+      case StripOperator::DecreaseBB:
+        quad(k, l);
+        for (int m = 1; m <= 4; ++m) left(k + 1, l + m);
+        add(StitchType::Decrease, {vid_a(k + 1), vid_b(l + 5), vid_a(k + 2), -1});
+        break;
+      case StripOperator::IncreaseDecrease:
+        add(StitchType::Increase, {vid_a(0), vid_b(1), vid_a(1), -1});
+        add(StitchType::Decrease, {vid_a(1), vid_b(1), vid_a(2), -1});
+        break;
     }
   }
 
@@ -138,9 +206,19 @@ class Strip {
   int na_ = 0, nb_ = 0;
 };
 
-constexpr std::array<StripOperator, 5> kOps = {StripOperator::ABAdvance, StripOperator::AAdvance,
-                                               StripOperator::BAdvance, StripOperator::BBAdvance,
-                                               StripOperator::BFan};
+constexpr std::array<StripOperator, 12> kOps = {
+    StripOperator::ABAdvance, StripOperator::AAdvance,   StripOperator::BAdvance,  StripOperator::BBAdvance,
+    StripOperator::BFan,      StripOperator::Increase,   StripOperator::IncreaseB, StripOperator::IncreaseBB,
+    StripOperator::Decrease,  StripOperator::DecreaseB,  StripOperator::DecreaseBB, StripOperator::IncreaseDecrease};
+
+bool starts_fork(StripOperator op) {
+  return op == StripOperator::Increase || op == StripOperator::IncreaseB || op == StripOperator::IncreaseBB ||
+         op == StripOperator::IncreaseDecrease;
+}
+bool ends_fork(StripOperator op) {
+  return op == StripOperator::Decrease || op == StripOperator::DecreaseB || op == StripOperator::DecreaseBB ||
+         op == StripOperator::IncreaseDecrease;
+}
 
 struct Diffusion {
   double mu = 0.0;
@@ -185,7 +263,8 @@ struct SearchResult {
 /// first (operators are tried in enum order), so the result is deterministic.
 SearchResult search(const Strip& s, std::array<int, 2> from, std::array<int, 2> to,
                     double lambda, bool allow_fan, const std::vector<double>& fixed,
-                    const Diffusion& dif) {
+                    const Diffusion& dif, bool fork_start = false, bool fork_end = false,
+                    bool allow_double = true) {
   auto node_ok = [&](int i, int j) {
     if ((i == from[0] && j == from[1]) || (i == to[0] && j == to[1])) return true;
     return s.bridge(2 * i, 2 * j) <= lambda;
@@ -217,10 +296,16 @@ SearchResult search(const Strip& s, std::array<int, 2> from, std::array<int, 2> 
       for (int li = node_head; li >= 0; li = labels[static_cast<size_t>(li)].next) {
         const double cost = labels[static_cast<size_t>(li)].cost;
         const int last0 = labels[static_cast<size_t>(li)].last;
+        const bool at_fork = fork_start && i == from[0] && j == from[1];
         for (StripOperator op : kOps) {
           if (op == StripOperator::BFan && !allow_fan) continue;
+          if (!allow_double && (op == StripOperator::BBAdvance || op == StripOperator::IncreaseBB ||
+                                op == StripOperator::DecreaseBB))
+            continue;
+          if (starts_fork(op) != at_fork) continue;  // a fork start takes a fork operator, nothing else does
           if (!s.shape(op, i, j, sh)) continue;
           const int i2 = i + sh.di, j2 = j + sh.dj;
+          if (ends_fork(op) != (fork_end && i2 == to[0] && j2 == to[1])) continue;
           if (i2 > to[0] || j2 > to[1] || !node_ok(i2, j2)) continue;
           double len = 0.0;
           bool ok = true;
@@ -305,6 +390,13 @@ std::string_view name(StripOperator op) {
     case StripOperator::BAdvance: return "B-advance";
     case StripOperator::BBAdvance: return "BB-advance";
     case StripOperator::BFan: return "B-fan";
+    case StripOperator::Increase: return "increase";
+    case StripOperator::IncreaseB: return "increase-B";
+    case StripOperator::IncreaseBB: return "increase-BB";
+    case StripOperator::Decrease: return "decrease";
+    case StripOperator::DecreaseB: return "decrease-B";
+    case StripOperator::DecreaseBB: return "decrease-BB";
+    case StripOperator::IncreaseDecrease: return "increase-decrease";
   }
   return "unknown";
 }
@@ -394,26 +486,51 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
   // There is one whenever some pair runs the same way (the closest such pair
   // is mutual); wales that run against each other everywhere are joined
   // from their starts.
-  if (pairs.empty()) pairs.push_back({0, 0});
-  const std::array<int, 2> source = pairs.front();
-  std::array<int, 2> target = source;
-  for (const auto& p : pairs)
-    if (p[0] > source[0] && p[1] >= source[1] && p[1] - source[1] <= 3 * (p[0] - source[0]))
-      target = p;
+  const bool fork_lo = o.start_increase, fork_hi = o.end_decrease;
+  if (fork_lo || fork_hi) {
+    double size = 0.0;
+    for (const Vec3& p : a) size = std::max(size, (p - a[0]).norm());
+    const double tol = 1e-6 * std::max(size, sw);
+    if (fork_lo && (a.front() - b.front()).norm() > tol)
+      throw InvalidInput(fmt::format("tessellate_strip: strip {}: a short column starts at a fork, but a_0 and b_0 "
+                                     "are {:.3g} mm apart",
+                                     strip, (a.front() - b.front()).norm()));
+    if (fork_hi && (a.back() - b.back()).norm() > tol)
+      throw InvalidInput(fmt::format("tessellate_strip: strip {}: a short column ends at a join, but its last "
+                                     "samples are {:.3g} mm apart",
+                                     strip, (a.back() - b.back()).norm()));
+  }
+  std::array<int, 2> source{0, 0}, target{na, nb};
+  if (!fork_lo) {
+    source = pairs.empty() ? std::array<int, 2>{0, 0} : pairs.front();
+    if (fork_hi && !(source[0] < na)) source = {0, 0};
+  }
+  if (!fork_hi) {
+    target = source;
+    for (const auto& p : pairs)
+      if (p[0] > source[0] && p[1] >= source[1] && p[1] - source[1] <= 3 * (p[0] - source[0]) && (!fork_lo || p[1] > 0))
+        target = p;
+    // Below a fork there is no bottom part: the middle part starts at (0, 0)
+    // with a fork operator, so it must lead somewhere.
+    if (fork_lo && target == source) target = {na, nb};
+  }
 
   StripTessellation r;
   r.source = source;
   r.target = target;
 
   std::vector<Vec3> placed = o.previous_apexes;
-  auto run_part = [&](std::array<int, 2> from, std::array<int, 2> to, double lambda,
-                      bool allow_fan) {
+  auto run_part = [&](std::array<int, 2> from, std::array<int, 2> to, double lambda, bool allow_fan,
+                      bool fork_start, bool fork_end) {
     const std::vector<double> fixed = nearest_apex_distances(s, placed, dif.length);
-    return search(s, from, to, lambda, allow_fan, fixed, dif);
+    return search(s, from, to, lambda, allow_fan, fixed, dif, fork_start, fork_end, o.allow_double_advance);
   };
 
-  // Bottom part (no lambda limit; always has a path thanks to the B-fan at a_0).
-  SearchResult bottom = run_part({0, 0}, source, kInf, true);
+  // Bottom part (no lambda limit; always has a path thanks to the B-fan at a_0);
+  // none below a fork.
+  SearchResult bottom;
+  bottom.found = true;
+  if (!fork_lo) bottom = run_part({0, 0}, source, kInf, true, false, false);
   if (!bottom.found)
     throw SolverError(fmt::format(
         "tessellate_strip: strip {}: internal error: no tessellation below the source node "
@@ -421,13 +538,20 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
         strip, 2 * source[0], 2 * source[1]));
   collect_apexes(s, bottom.steps, placed);
 
-  // Middle part with the bridge limit lambda, grown by 10 % until a path exists.
+  // Middle part with the bridge limit lambda, grown by 10 % until a path
+  // exists; it starts (ends) with a fork operator at a fork end.
   double max_bridge = -1.0;  // longest bridge between source and target, computed on demand
   double lambda = lambda0;
   int growths = 0;
   SearchResult middle;
+  const bool empty_middle = source == target && !fork_lo && !fork_hi;
+  bool fallback = false;
   for (;;) {
-    middle = run_part(source, target, lambda, false);
+    if (empty_middle) {
+      middle.found = true;
+      break;
+    }
+    middle = run_part(source, target, lambda, false, fork_lo, fork_hi);
     if (middle.found) break;
     if (max_bridge < 0.0) {
       max_bridge = 0.0;
@@ -435,21 +559,44 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
         for (int l = 2 * source[1]; l <= 2 * target[1]; ++l)
           max_bridge = std::max(max_bridge, s.bridge(k, l));
     }
+    if ((growths >= o.max_lambda_growths || lambda >= max_bridge) && fork_lo != fork_hi && !fallback) {
+      // One end is a fork, the other a wale end: the fork operators may need
+      // more of the other wale than the bridge-limited part gives; search the
+      // whole strip from (to) the wale end instead, with its fans.
+      fallback = true;
+      if (!fork_lo) {
+        source = {0, 0};
+        bottom.steps.clear();
+        placed = o.previous_apexes;
+      } else {
+        target = {na, nb};
+      }
+      r.source = source;
+      r.target = target;
+      middle = run_part(source, target, kInf, true, fork_lo, fork_hi);
+      if (middle.found) {
+        lambda = max_bridge;
+        break;
+      }
+    }
     if (growths >= o.max_lambda_growths || lambda >= max_bridge)
       throw SolverError(fmt::format(
           "tessellate_strip: strip {}: no knittable tessellation between the source bridge "
           "(a_{}, b_{}) and the target bridge (a_{}, b_{}) even with lambda = {:.4g} mm after {} "
           "growths (initial {:.4g} mm, longest bridge {:.4g} mm); the wales may be too far apart "
-          "or of too different length for the stitch size",
+          "or of too different length for the stitch size{}",
           strip, 2 * source[0], 2 * source[1], 2 * target[0], 2 * target[1], lambda, growths,
-          lambda0, max_bridge));
+          lambda0, max_bridge, fork_lo || fork_hi ? " (a short column's wales differ by more than the fork operators allow)" : ""));
     lambda *= 1.1;
     ++growths;
   }
   collect_apexes(s, middle.steps, placed);
 
-  // Top part (no lambda limit; always has a path thanks to the B-fan at a_2na).
-  SearchResult top = run_part(target, {na, nb}, kInf, true);
+  // Top part (no lambda limit; always has a path thanks to the B-fan at a_2na);
+  // none above a join.
+  SearchResult top;
+  top.found = true;
+  if (!fork_hi) top = run_part(target, {na, nb}, kInf, true, false, false);
   if (!top.found)
     throw SolverError(fmt::format(
         "tessellate_strip: strip {}: internal error: no tessellation above the target node "

@@ -96,6 +96,27 @@
 /// regions that the post-processing adjusts), with the B-fan available at the
 /// wale ends, so they always have a path: no part of the strip is dropped.
 ///
+/// ## Short columns (seed §3.3.4)
+///
+/// A strip between a front and a short wale that leaves it (or rejoins it)
+/// starts (ends) at one point, a_0 = b_0 (a_2na = b_2nb): the fork. With
+/// StripOptions::start_increase the first operator, from (0, 0), must be a
+/// fork operator: an AB-, B- or BB-advance whose first quad
+/// (a0, b0, b1, a1) becomes the Increase (a0 apex, b1 TR, a1 TL) — Increase
+/// to (1, 1), IncreaseB to (1, 2), IncreaseBB to (1, 3). With end_decrease
+/// the last operator, into (na, nb), is an AB-, B- or BB-advance whose last
+/// quad becomes the Decrease (a2na-1 BL, b2nb-1 BR, a2na apex) — Decrease,
+/// DecreaseB, DecreaseBB. With both and na = nb = 1, IncreaseDecrease:
+/// Increase (a0, b1, a1), Decrease (a1, b1, a2). A longer A is covered by
+/// A-advances after the Increase or before the Decrease: an A-advance's
+/// right-end pair must start on an even course (the yarn arrives at the apex
+/// going right), which a variant starting with the Increase cannot give.
+/// These operators take part in the shortest-path search of the middle part
+/// (there is no bottom / top part at a fork end), with the same costs; the
+/// course parities work out as for the other operators (every one adds an
+/// even number of faces). The vertex id of b_0 (b_2nb) is then not used; the
+/// caller gives both the same vertex.
+///
 /// ## Shortest path
 ///
 /// Every operator moves the node forward in the lexicographic order of
@@ -136,8 +157,12 @@
 
 namespace knitforge {
 
-/// The operators of §3.2.2 (plus the boundary fan, see the file comment).
-enum class StripOperator : uint8_t { ABAdvance, AAdvance, BAdvance, BBAdvance, BFan };
+/// The operators of §3.2.2 (plus the boundary fan, see the file comment),
+/// and the ends of a short column (seed §3.3.4, see "Short columns").
+enum class StripOperator : uint8_t {
+  ABAdvance, AAdvance, BAdvance, BBAdvance, BFan,
+  Increase, IncreaseB, IncreaseBB, Decrease, DecreaseB, DecreaseBB, IncreaseDecrease
+};
 
 /// Options of tessellate_strip(). Lengths in mm.
 struct StripOptions {
@@ -155,6 +180,15 @@ struct StripOptions {
   std::vector<Vec3> previous_apexes;
   /// Index of the strip, used in error messages only.
   int strip_index = 0;
+  /// The strip starts at a fork a_0 = b_0 with an Increase (see "Short columns").
+  bool start_increase = false;
+  /// The strip ends at a join a_2na = b_2nb with a Decrease.
+  bool end_decrease = false;
+  /// Allow the operators with two left-end pairs at one apex (BB-advance,
+  /// IncreaseBB, DecreaseBB): their four stacked short-row ends violate the
+  /// stacked-short-row-ends rule (knittability.md), so a route that must pass
+  /// every rule turns them off; B can then be at most twice as long as A.
+  bool allow_double_advance = true;
 };
 
 /// One face of the strip.
@@ -204,7 +238,8 @@ Vec3 wale_tangent(const std::vector<Vec3>& w, size_t k);
 /// Tessellates the strip between the left wale a and the right wale b.
 /// \pre a.size() and b.size() odd and >= 3 (an even number >= 2 of
 ///      segments), finite points, sw > 0, sh > 0, mu >= 0, lambda > 0.
-/// \throw InvalidInput naming the strip and the offending argument.
+/// \throw InvalidInput naming the strip and the offending argument, also when
+///        a fork end's two points differ (by more than 1e-6 x the strip size).
 /// \throw SolverError naming the strip when no path exists between source and
 ///        target even after max_lambda_growths growths of lambda (or once
 ///        lambda exceeds every bridge between them).
@@ -212,7 +247,9 @@ Vec3 wale_tangent(const std::vector<Vec3>& w, size_t k);
 StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
                                    const StripOptions& options);
 
-/// "AB-advance", "A-advance", "B-advance", "BB-advance", "B-fan".
+/// "AB-advance", "A-advance", "B-advance", "BB-advance", "B-fan", "increase",
+/// "increase-B", "increase-BB", "decrease", "decrease-B", "decrease-BB",
+/// "increase-decrease".
 std::string_view name(StripOperator op);
 
 }  // namespace knitforge

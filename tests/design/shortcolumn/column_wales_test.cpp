@@ -1,0 +1,121 @@
+// Wale extraction of the short-column route (Alg. 3.1-3.3, column_wales.h).
+#include "knitforge/design/shortcolumn/column_wales.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "design/shortcolumn/test_meshes.h"
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+namespace {
+
+const KnitParams kParams{3.5, 2.8};
+
+double distance_to_polyline(const std::vector<Vec3>& pl, const Vec3& p) {
+  double best = 1e300;
+  for (size_t k = 0; k + 1 < pl.size(); ++k) {
+    const Vec3 ab = pl[k + 1] - pl[k];
+    const double t = std::clamp((p - pl[k]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (pl[k] + t * ab - p).norm());
+  }
+  return best;
+}
+
+/// Properties every extraction must have: strips start on even samples, the
+/// parities alternate along both wales, forks are shared samples.
+void expect_consistent_strips(const ColumnWales& w) {
+  ASSERT_EQ(w.samples.size(), w.parity.size());
+  for (const ColumnStrip& s : w.strips) {
+    ASSERT_GE(s.a.size(), 3u);
+    ASSERT_GE(s.b.size(), 3u);
+    EXPECT_EQ(s.a.size() % 2, 1u) << "an even number of segments";
+    EXPECT_EQ(s.b.size() % 2, 1u);
+    for (size_t k = 0; k < s.a.size(); ++k) EXPECT_EQ(w.parity[static_cast<size_t>(s.a[k])], static_cast<int>(k % 2));
+    for (size_t k = 0; k < s.b.size(); ++k) EXPECT_EQ(w.parity[static_cast<size_t>(s.b[k])], static_cast<int>(k % 2));
+    EXPECT_EQ(s.start_increase, s.a.front() == s.b.front());
+    EXPECT_EQ(s.end_decrease, s.a.back() == s.b.back());
+  }
+}
+
+TEST(ColumnWales, ParallelIsocurvesGiveWholeWalesOnly) {
+  // f = x on a rectangle: the fronts advance straight, no wale lags.
+  const TriMesh m = rectangle(60.0, 40.0, 2.0);
+  std::vector<double> f;
+  for (const Vec3& p : m.vertices) f.push_back(p.x());
+  const ColumnWales w = extract_column_wales(m, f, kParams);
+  expect_consistent_strips(w);
+  EXPECT_EQ(w.fill_steps, 0);
+  EXPECT_EQ(w.region_splits, 0);
+  // 60 mm / 3.5 mm = 17.1 advances of the whole front (the last narrower
+  // region closed by a last strip).
+  EXPECT_GE(w.whole_steps, 16);
+  EXPECT_LE(w.whole_steps, 18);
+  for (const ColumnStrip& s : w.strips) {
+    if (s.start_increase) continue;  // the last strip, along the boundary
+    std::vector<Vec3> a;
+    for (int id : s.a) a.push_back(w.samples[static_cast<size_t>(id)]);
+    for (int id : s.b) {
+      const Vec3& p = w.samples[static_cast<size_t>(id)];
+      EXPECT_NEAR(distance_to_polyline(a, p), kParams.stitch_width, 0.05) << "wales one stitch width apart";
+      EXPECT_NEAR(p.y(), std::clamp(p.y(), -20.0, 20.0), 1e-9);
+    }
+  }
+  EXPECT_LT(w.uncovered_area, 1e-6);
+}
+
+TEST(ColumnWales, SpreadingIsocurvesGiveShortWalesThatForkFromTheFront) {
+  // f = angle on a quarter annulus: the isocurves (rays) spread with r, the
+  // fronts (parallel offsets) lag at large r: short wales fill the lag.
+  const TriMesh m = test::polar_grid(20.0, 80.0, 0.0, std::numbers::pi / 2, 40, 60);
+  std::vector<double> f;
+  for (const Vec3& p : m.vertices) f.push_back(std::atan2(p.y(), p.x()));
+  const ColumnWales w = extract_column_wales(m, f, kParams);
+  expect_consistent_strips(w);
+  EXPECT_GT(w.fill_steps, 0);
+  int forks = 0, short_strips = 0;
+  for (const ColumnStrip& s : w.strips) {
+    forks += s.start_increase;
+    short_strips += s.short_wale;
+  }
+  EXPECT_GT(forks, 0);
+  EXPECT_GT(short_strips, 0);
+  for (const Vec3& p : w.samples) {
+    const double r = std::hypot(p.x(), p.y());
+    EXPECT_GT(r, 20.0 - 0.002) << "inside (the inner rim's chords dip 0.0017 mm below r = 20)";
+    EXPECT_LT(r, 80.0 + 1e-6);
+    EXPECT_NEAR(p.z(), 0.0, 1e-9);
+  }
+  // The outer arc is 4 x the inner one: the number of wales grows towards it.
+  EXPECT_GT(static_cast<int>(w.wales.size()), w.whole_steps);
+  // No sample is the apex of two increases.
+  std::vector<int> increases(w.samples.size(), 0);
+  for (const ColumnStrip& s : w.strips)
+    if (s.start_increase && !s.end_decrease) {
+      EXPECT_LE(++increases[static_cast<size_t>(s.a.front())], 1);
+    }
+}
+
+TEST(ColumnWales, RejectsFieldsItCannotStartFrom) {
+  const TriMesh m = rectangle(30.0, 20.0, 2.0);
+  std::vector<double> f(static_cast<size_t>(m.num_vertices()), 0.0);
+  EXPECT_THROW(extract_column_wales(m, f, kParams), InvalidInput) << "constant";
+  for (size_t v = 0; v < f.size(); ++v) f[v] = m.vertices[v].squaredNorm();  // minimum inside
+  try {
+    extract_column_wales(m, f, kParams);
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("not on the boundary"), std::string::npos) << e.what();
+  }
+  f.pop_back();
+  EXPECT_THROW(extract_column_wales(m, f, kParams), InvalidInput);
+  f.assign(static_cast<size_t>(m.num_vertices()), 0.0);
+  for (size_t v = 0; v < f.size(); ++v) f[v] = m.vertices[v].x();
+  EXPECT_THROW(extract_column_wales(m, f, KnitParams{0.0, 2.8}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace knitforge

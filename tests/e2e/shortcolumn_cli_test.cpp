@@ -1,0 +1,132 @@
+// End-to-end runs of `knitforge shortcolumn` (issue 14): optimised boundary
+// conditions, short rows and short columns, machine program, on the
+// built-in hemisphere.
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_fixture.h"
+#include "knitforge/convert/map_knittability.h"
+#include "knitforge/core/knittability.h"
+#include "knitforge/core/stitch_mesh.h"
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+
+using namespace knitforge;
+using namespace knitforge_e2e;
+
+TEST_F(Cli, ShortColumnHemisphereOptimisesAndWritesAMatchingProgram) {
+  const std::string out = path("hemi");
+  const CliRun r = run("shortcolumn hemisphere --budget 20 -o " + out + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"stitch_mesh.ply", "knitting_map.csv", "knitting_map.png", "knitting_map.svg", "wales.obj",
+                        "field.ply", "field.txt", "divergence.ply", "target.ply", "yarn.obj", "relaxed.ply",
+                        "shape_error.ply", "distortion.ply", "optimisation.json", "optimisation.svg", "knitout.k",
+                        "report.json", "report.html"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  for (const char* stage : {"evaluation 20/20", "optimisation: best b", "wale curves", "tessellation", "knitting map"})
+    EXPECT_NE(r.err.find(stage), std::string::npos) << stage;
+  const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(report, nlohmann::json::parse(r.out)) << "--json prints report.json";
+  EXPECT_TRUE(report["knittable"].get<bool>());
+
+  // The map and the stitch mesh read back pass every check; the counts agree.
+  const KnittingMap map = read_knitting_map_csv(out + "/knitting_map.csv");
+  EXPECT_TRUE(check_knittability(map, KnitParams{3.5, 2.8}).ok());
+  const StitchMesh mesh = read_stitch_mesh_ply(out + "/stitch_mesh.ply");
+  EXPECT_TRUE(check_knittability(mesh).ok());
+  const nlohmann::json& c = report["counts"];
+  EXPECT_EQ(mesh.num_stitches(), c["stitches"].get<int>());
+  const auto types = count_stitch_types(mesh);
+  EXPECT_EQ(types[static_cast<int>(StitchType::Increase)], c["increases"].get<int>());
+  EXPECT_EQ(types[static_cast<int>(StitchType::Decrease)], c["decreases"].get<int>());
+  EXPECT_EQ(c["transfer_stitches"].get<int>(), c["increases"].get<int>() + c["decreases"].get<int>());
+  EXPECT_EQ(static_cast<int>(read_polylines_obj(out + "/wales.obj").size()), c["wales"].get<int>());
+  EXPECT_LT(std::abs(c["stitches_vs_area"].get<double>()), 0.05);
+
+  // The machine program: valid, its knit graph matches the map, and it
+  // makes the map's short-column stitches.
+  const nlohmann::json& m = report["machine"];
+  EXPECT_EQ(m["verdict"], "VALID");
+  EXPECT_TRUE(m["matches_map"].get<bool>());
+  EXPECT_EQ(m["shaping"]["transfer_stitches"].get<int>(), c["transfer_stitches"].get<int>());
+  EXPECT_GT(m["knit_time_s"].get<double>(), 0.0);
+  const CliRun sim = run("simulate " + out + "/knitout.k --against " + out + "/knitting_map.csv");
+  EXPECT_EQ(sim.code, 0) << sim.out;
+  EXPECT_NE(sim.out.find("MATCHES"), std::string::npos) << sim.out;
+
+  // The optimisation history: 20 evaluations, the best so far never rises,
+  // and the design's b is the best one (the first alternative was knittable).
+  const nlohmann::json h = nlohmann::json::parse(slurp(out + "/optimisation.json"));
+  ASSERT_EQ(h["evaluations"].size(), 20u);
+  double best = 1e300;
+  for (const auto& e : h["evaluations"]) {
+    best = std::min(best, e["estimated_transfers"].get<double>());
+    EXPECT_DOUBLE_EQ(e["best_so_far"].get<double>(), best);
+  }
+  EXPECT_DOUBLE_EQ(h["best"]["estimated_transfers"].get<double>(), best);
+  EXPECT_EQ(report["field"]["b"], h["best"]["b"]);
+
+  // The comparison with the short-row-only design of the same surface.
+  const nlohmann::json& sr = report["comparison"]["short_row_only"];
+  EXPECT_GT(sr["stitches"].get<int>(), 0);
+  EXPECT_TRUE(sr["knittable"].get<bool>());
+
+  // The field written is the field designed with: --field gives the same design.
+  const std::string again = path("again");
+  const CliRun r2 = run("shortcolumn hemisphere --field " + out + "/field.txt --no-evaluate --no-compare -o " + again);
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  const nlohmann::json rep2 = nlohmann::json::parse(slurp(again + "/report.json"));
+  EXPECT_EQ(rep2["field"]["kind"], "file");
+  EXPECT_EQ(rep2["counts"]["stitches"], c["stitches"]);
+  EXPECT_EQ(rep2["counts"]["transfer_stitches"], c["transfer_stitches"]);
+  EXPECT_FALSE(fs::exists(again + "/optimisation.json"));
+}
+
+TEST_F(Cli, ShortColumnGivenBoundaryVectorAndBadInputs) {
+  const std::string out = path("bc");
+  CliRun r = run("shortcolumn hemisphere --bc 0.84,0.84,1.34,1.34 --no-evaluate --no-compare --no-knitout -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(report["field"]["kind"], "harmonic");
+  EXPECT_DOUBLE_EQ(report["field"]["b"][0].get<double>(), 0.84);
+  EXPECT_FALSE(report.contains("optimisation"));
+  EXPECT_FALSE(fs::exists(out + "/knitout.k"));
+
+  const std::string bad = path("bad");
+  r = run("shortcolumn hemisphere --bc 0.5,0.4,0.6,0.7 -o " + bad);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("feasible set"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(bad + "/report.json"));
+  r = run("shortcolumn hemisphere --bc 0.1,0.2,0.3 -o " + bad);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("four numbers"), std::string::npos) << r.err;
+  {
+    std::ofstream f(path("short_field.txt"));
+    f << "0\n1\n2\n";
+  }
+  r = run("shortcolumn hemisphere --field " + path("short_field.txt") + " -o " + bad);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("short_field.txt"), std::string::npos) << r.err;
+  r = run("shortcolumn hemisphere --bc 0.84,0.84,1.34,1.34 --field fiedler -o " + bad);
+  EXPECT_NE(r.code, 0);
+  r = run("shortcolumn no_such_surface.obj -o " + bad);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no_such_surface.obj"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, ShortColumnBuiltInShapesAreKnittableAndTheirProgramsMatch) {
+  // The issue's other built-in inputs with the default options (budget 100,
+  // 10 alternatives): the cap is cut into a disk first.
+  for (const char* shape : {"triple-peak", "monkey-saddle", "cap"}) {
+    SCOPED_TRACE(shape);
+    const std::string out = path(shape);
+    const CliRun r = run(std::string("shortcolumn ") + shape + " --no-evaluate --no-compare --no-report -o " + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(out + "/report.json"));
+    EXPECT_TRUE(report["knittable"].get<bool>());
+    EXPECT_EQ(report["machine"]["verdict"], "VALID");
+    EXPECT_TRUE(report["machine"]["matches_map"].get<bool>());
+    EXPECT_GT(report["counts"]["transfer_stitches"].get<int>(), 0) << "these surfaces get short columns";
+    EXPECT_EQ(report["machine"]["shaping"]["transfer_stitches"], report["counts"]["transfer_stitches"]);
+  }
+}
