@@ -115,7 +115,7 @@ namespace knitforge_e2e {
 
 TEST_F(Cli, SimulateReportDrawsAProgramsFabric) {
   const std::string prog =
-      (fs::path(__FILE__).parent_path().parent_path() / "machine" / "data" / "published_style" / "swatch_drop.k").string();
+      (fs::path(KNITFORGE_TESTS_DIR) / "machine" / "data" / "published_style" / "swatch_drop.k").string();
   const CliRun r = run("simulate " + prog + " --machine kniterate --report " + path("view"));
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("sheet, 8 courses x 10 wales; 10 of 10 findings placed on the fabric"), std::string::npos)

@@ -20,7 +20,7 @@ using knitforge::test::make_map;
 
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(__FILE__).parent_path() / "data";
+const std::filesystem::path kData = std::filesystem::path(KNITFORGE_TESTS_DIR) / "machine" / "data";
 
 std::string read_text(const std::string& name) {
   std::ifstream in(kData / name);

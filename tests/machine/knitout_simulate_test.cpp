@@ -12,7 +12,7 @@ using namespace knitforge;
 
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(__FILE__).parent_path() / "data";
+const std::filesystem::path kData = std::filesystem::path(KNITFORGE_TESTS_DIR) / "machine" / "data";
 
 const MachineProfile& shima() { return machine_profile("shima-swg091n2"); }
 

@@ -18,7 +18,7 @@
 namespace knitforge {
 namespace {
 
-const std::filesystem::path kDir = std::filesystem::path(__FILE__).parent_path() / "data" / "published_style";
+const std::filesystem::path kDir = std::filesystem::path(KNITFORGE_TESTS_DIR) / "machine" / "data" / "published_style";
 
 struct Expect {
   const char* file;

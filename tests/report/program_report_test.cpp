@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kData = fs::path(__FILE__).parent_path().parent_path() / "machine" / "data" / "published_style";
+const fs::path kData = fs::path(KNITFORGE_TESTS_DIR) / "machine" / "data" / "published_style";
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

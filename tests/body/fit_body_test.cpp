@@ -1,0 +1,166 @@
+// Fitting the body model to a scan (eq. 5.1) and to a partial cloud (eq. 5.4)
+// (body/fit_body.h): a body made with other measurements, another pose and a
+// translation, meshed at another resolution (so no vertex correspondence),
+// with noise; the fit recovers its measurements.
+#include "knitforge/body/fit_body.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <random>
+
+#include "knitforge/body/body_measurements.h"
+#include "knitforge/body/body_pose.h"
+#include "knitforge/body/generated_body.h"
+#include "knitforge/evaluate/surface_distance.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+namespace {
+
+struct Target {
+  BodyParams params;
+  TriMesh scan;              // the posed body at another resolution, with noise
+  BodyMeasurements measured;  // of the default model with the target's shape
+};
+
+const BodyModel& coarse_model() {
+  static const BodyModel other = [] {
+    GeneratedBodyOptions coarse;
+    coarse.edge_length = 22.0;
+    return make_generated_body(coarse);
+  }();
+  return other;
+}
+
+TriMesh noisy_scan(const BodyParams& p, unsigned seed) {
+  const BodyModel& other = coarse_model();
+  TriMesh scan = posed_mesh(other, pose_body(other, p));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> noise(-2.0, 2.0);
+  for (Vec3& v : scan.vertices) v += Vec3(noise(rng), noise(rng), noise(rng));
+  return scan;
+}
+
+const Target& target() {
+  static const Target t = [] {
+    const BodyModel& m = generated_body();
+    Target out;
+    out.params = pose_preset(m, "a-pose");
+    auto set = [&](Measurement q, double v) { out.params.shape(static_cast<int>(q)) = v; };
+    set(Measurement::Stature, 40.0);
+    set(Measurement::ChestGirth, 50.0);
+    set(Measurement::WaistGirth, -30.0);
+    set(Measurement::HipGirth, 25.0);
+    set(Measurement::ThighGirth, 15.0);
+    set(Measurement::ArmLength, -20.0);
+    set_joint_rotation(m, out.params, "left_elbow", {0, 0, -0.2});
+    set_joint_rotation(m, out.params, "right_knee", {0.15, 0, 0});
+    set_joint_rotation(m, out.params, "pelvis", {0, 0, 0.1});
+    out.params.translation_mm = {15, -20, 10};
+    out.scan = noisy_scan(out.params, 42);
+    out.measured = measure_body(m, shape_body(m, out.params.shape));
+    return out;
+  }();
+  return t;
+}
+
+void expect_measurements(const BodyModel& m, const BodyParams& fitted, const BodyMeasurements& want, double tol) {
+  const BodyMeasurements got = measure_body(m, shape_body(m, fitted.shape));
+  for (int k = 0; k < kNumMeasurements; ++k) {
+    const auto q = static_cast<Measurement>(k);
+    // The head, hands and feet have zero weight in eq. 5.1; the head girth
+    // is not fitted.
+    if (q == Measurement::HeadGirth) continue;
+    std::printf("  %-18s want %7.1f got %7.1f (%+.1f mm)\n", measurement_info(q).key, want[k], got[k], got[k] - want[k]);
+    EXPECT_NEAR(got[k], want[k], tol) << measurement_info(q).key;
+  }
+}
+
+TEST(FitBody, TemplateToScanRecoversShapePoseAndTranslation) {
+  const BodyModel& m = generated_body();
+  const Target& t = target();
+  const BodyParams init = pose_preset(m, "a-pose");
+  const auto start = std::chrono::steady_clock::now();
+  const BodyFitResult r = fit_body(m, t.scan, init);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("eq. 5.1: rms %.2f -> %.2f mm in %d iterations, %.1f s, converged %d\n", r.initial_rms_mm, r.rms_mm,
+              r.iterations, secs, r.converged);
+  EXPECT_LT(r.rms_mm, 3.0);
+  EXPECT_LT(r.rms_mm, 0.2 * r.initial_rms_mm);
+  EXPECT_LT((r.params.translation_mm - t.params.translation_mm).norm(), 10.0);
+  expect_measurements(m, r.params, t.measured, 10.0);
+  // The objective never increases.
+  for (size_t i = 1; i < r.rms_history_mm.size(); ++i) EXPECT_LE(r.rms_history_mm[i], r.rms_history_mm[i - 1] + 0.05);
+}
+
+TEST(FitBody, ScanToTemplateFitsAPartialCloud) {
+  // The camera sees the front: the 30 % of the points farthest back are gone.
+  const BodyModel& m = generated_body();
+  const Target& t = target();
+  std::vector<double> ys;
+  for (const Vec3& v : t.scan.vertices) ys.push_back(v.y());
+  std::vector<double> sorted = ys;
+  std::sort(sorted.begin(), sorted.end());
+  const double cut = sorted[static_cast<size_t>(0.7 * static_cast<double>(sorted.size()))];
+  TriMesh cloud;
+  for (const Vec3& v : t.scan.vertices)
+    if (v.y() < cut) cloud.vertices.push_back(v);
+  BodyFitOptions o;
+  o.direction = BodyFitDirection::ScanToTemplate;
+  const BodyFitResult r = fit_body(m, cloud, pose_preset(m, "a-pose"), o);
+  std::printf("eq. 5.4: rms %.2f -> %.2f mm in %d iterations, converged %d\n", r.initial_rms_mm, r.rms_mm,
+              r.iterations, r.converged);
+  EXPECT_LT(r.rms_mm, 3.0);
+  // Point-to-surface distance of the cloud to the fitted body, independently.
+  const std::vector<double> d = distances_to_surface(posed_mesh(m, r.posed), cloud.vertices);
+  double sq = 0.0;
+  for (double x : d) sq += x * x;
+  EXPECT_NEAR(std::sqrt(sq / static_cast<double>(d.size())), r.rms_mm, 0.05);
+  expect_measurements(m, r.params, t.measured, 10.0);
+}
+
+TEST(FitBody, MultistartFitsAFarPose) {
+  // The relaxed pose (arms 20 degrees lower than the initial a-pose, elbows
+  // and knees bent). Here eq. 5.1 alone finds it and both directions alone
+  // stretch an arm to the scan's hand; on the 8 mm scan of docs/body.md it is
+  // the other way round. The multistart keeps the better by both distances.
+  const BodyModel& m = generated_body();
+  BodyParams p = pose_preset(m, "relaxed");
+  p.shape = target().params.shape;
+  const TriMesh scan = noisy_scan(p, 7);
+  const BodyMeasurements want = measure_body(m, shape_body(m, p.shape));
+  const BodyParams init = pose_preset(m, "a-pose");
+  const BodyFitResult one = fit_body(m, scan, init);
+  BodyFitOptions o;
+  o.direction = BodyFitDirection::Both;
+  const BodyFitResult both = fit_body(m, scan, init, o);
+  const BodyFitResult best = fit_body_multistart(m, scan, init);
+  std::printf("relaxed from a-pose: eq. 5.1 rms %.2f mm (symmetric %.2f); both directions %.2f mm (symmetric %.2f); "
+              "multistart chose run %d, symmetric rms %.2f mm\n",
+              one.rms_mm, symmetric_rms_mm(m, scan, one.params), both.rms_mm, symmetric_rms_mm(m, scan, both.params),
+              best.chosen_run, best.rms_mm);
+  EXPECT_LT(best.rms_mm, 3.0);
+  EXPECT_LE(best.rms_mm, symmetric_rms_mm(m, scan, one.params) + 1e-12);
+  EXPECT_LE(best.rms_mm, symmetric_rms_mm(m, scan, both.params) + 1e-12);
+  expect_measurements(m, best.params, want, 10.0);
+}
+
+TEST(FitBody, RejectsBadInput) {
+  const BodyModel& m = generated_body();
+  TriMesh cloud;
+  cloud.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_THROW(fit_body(m, cloud, zero_params(m)), InvalidInput);  // eq. 5.1 needs faces
+  EXPECT_THROW(fit_body(m, TriMesh{}, zero_params(m)), InvalidInput);
+  BodyFitOptions o;
+  o.max_iterations = 0;
+  cloud.faces = {{0, 1, 2}};
+  EXPECT_THROW(fit_body(m, cloud, zero_params(m), o), InvalidInput);
+  BodyParams wrong = zero_params(m);
+  wrong.shape.resize(3);
+  EXPECT_THROW(fit_body(m, cloud, wrong), InvalidInput);
+}
+
+}  // namespace
+}  // namespace knitforge

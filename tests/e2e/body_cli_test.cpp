@@ -1,0 +1,64 @@
+// End-to-end runs of `knitforge body make` and `knitforge body fit` (seed ch. 5).
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_fixture.h"
+#include "knitforge/geometry/surface_checks.h"
+#include "knitforge/io/mesh_io.h"
+
+using namespace knitforge;
+using namespace knitforge_e2e;
+
+TEST_F(Cli, BodyMakeWritesAClosedBodyWithTheMeasurementsAsked) {
+  CliRun r = run("body make --height 168 --chest 92 --waist 74 --hip 99 --pose a-pose -o " + path("body.ply") +
+                 " --params " + path("body.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh m = read_mesh(path("body.ply"));
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.ok()) << rep.summary();
+  EXPECT_EQ(rep.genus, 0);
+  EXPECT_EQ(rep.num_boundary_loops, 0);
+  const auto j = nlohmann::json::parse(slurp(path("body.json")));
+  EXPECT_NEAR(j["measurements_mm"]["stature"].get<double>(), 1680.0, 0.5);
+  EXPECT_NEAR(j["measurements_mm"]["chest_girth"].get<double>(), 920.0, 0.5);
+  EXPECT_NEAR(j["measurements_mm"]["waist_girth"].get<double>(), 740.0, 0.5);
+  EXPECT_NEAR(j["measurements_mm"]["hip_girth"].get<double>(), 990.0, 0.5);
+  EXPECT_EQ(j["vertex_parts"].size(), m.vertices.size());
+  // The a-pose: the wrists hang below the shoulders.
+  EXPECT_LT(j["joints_mm"]["left_wrist"][2].get<double>(), j["joints_mm"]["left_shoulder"][2].get<double>() - 150.0);
+  // Deterministic.
+  r = run("body make --height 168 --chest 92 --waist 74 --hip 99 --pose a-pose -o " + path("again.ply"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("body.ply")), slurp(path("again.ply")));
+}
+
+TEST_F(Cli, BodyFitRecoversTheMeasurementsOfAMadeBody) {
+  // A body in centimetres, another pose; the fit starts from the a-pose.
+  CliRun r = run("body make --height 182 --chest 104 --waist 90 --pose relaxed -o " + path("scan.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("body fit " + path("scan.obj") + " -o " + path("fitted"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("fitted/params.json")));
+  EXPECT_LT(j["fit"]["rms_mm"].get<double>(), 3.0);
+  EXPECT_NEAR(j["measurements_mm"]["stature"].get<double>(), 1820.0, 10.0);
+  EXPECT_NEAR(j["measurements_mm"]["chest_girth"].get<double>(), 1040.0, 10.0);
+  EXPECT_NEAR(j["measurements_mm"]["waist_girth"].get<double>(), 900.0, 10.0);
+  const std::string parts = slurp(path("fitted/scan_parts.csv"));
+  EXPECT_NE(parts.find(",torso-front"), std::string::npos);
+  EXPECT_NE(parts.find(",left-sleeve"), std::string::npos);
+  EXPECT_TRUE(fs::exists(path("fitted/fitted.obj")));
+  EXPECT_TRUE(fs::exists(path("fitted/vertex_error.csv")));
+}
+
+TEST_F(Cli, BodyBadInputExitsNonZeroAndWritesNothing) {
+  CliRun r = run("body make --height 400 -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("body height"), std::string::npos) << r.err;
+  r = run("body make --chest 95 --pose cartwheel -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("a-pose"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.obj")));
+  r = run("body fit " + path("missing.obj") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  r = run("body make --height -3 -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 2);  // a usage error (not a positive number)
+}
