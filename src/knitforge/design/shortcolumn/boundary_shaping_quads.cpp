@@ -1,6 +1,7 @@
 #include "knitforge/design/shortcolumn/boundary_shaping_quads.h"
 
 #include <map>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -43,11 +44,16 @@ std::vector<int> fan_from(const StitchMesh& mesh, const std::map<Edge, std::vect
 
 BoundaryShapingQuadStats boundary_shaping_quads(StitchMesh& mesh) {
   BoundaryShapingQuadStats stats;
-  const StitchAdjacency adj(mesh);
+  // Every change below adds a vertex and changes corners of stitches, so the
+  // adjacency is built again before the next stitch is looked at (a change
+  // is rare: one per shaping stitch at the fabric's edge).
+  std::optional<StitchAdjacency> built;
   const int n = mesh.num_stitches();
   for (int s = 0; s < n; ++s) {
+    if (mesh.stitches[s].type != StitchType::Increase && mesh.stitches[s].type != StitchType::Decrease) continue;
+    if (!built) built.emplace(mesh);
+    const StitchAdjacency& adj = *built;
     Stitch& st = mesh.stitches[s];
-    if (st.type != StitchType::Increase && st.type != StitchType::Decrease) continue;
     const int a = apex_vertex(st);
     if (!adj.is_boundary_vertex(a)) continue;
     const bool left = adj.neighbor(s, Side::Left) >= 0;
@@ -82,6 +88,7 @@ BoundaryShapingQuadStats boundary_shaping_quads(StitchMesh& mesh) {
       me.type = StitchType::Knit;
       ++stats.split_apexes;
       ++(inc ? stats.increases : stats.decreases);
+      built.reset();
       continue;
     }
     const Vec3 p = mesh.vertices[a];
@@ -108,6 +115,7 @@ BoundaryShapingQuadStats boundary_shaping_quads(StitchMesh& mesh) {
       ++stats.decreases;
     }
     st.type = StitchType::Knit;
+    built.reset();
   }
   return stats;
 }
