@@ -22,6 +22,13 @@
 /// map_to_stitch_mesh_topology() of it gives the same stitches back, and for
 /// canonical maps map -> mesh -> map is the identity.
 ///
+/// Tubes: when the columns form a cycle and every stitch has a wale label,
+/// the mesh is read as a tube (docs/tubes.md): the labels (minus the
+/// smallest) are the columns, a Right neighbour with a smaller or equal label
+/// closes its row (a round), and the round's seam is where its lowest-index
+/// stitch starts (stitches numbered in knitting order, as
+/// map_to_stitch_mesh_topology() numbers them); the map gets a seam array.
+///
 /// Runs in O(stitches + rows * cols).
 
 #include "knitforge/core/knitting_map.h"
