@@ -307,3 +307,17 @@ TEST(MapKnittability, TaperedTubeDecreasesAreKnittableButNotSideBySide) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(MapKnittability, AHeelWedgeOnPartOfTheRoundIsKnittable) {
+  const KnittingMap heel = knitforge::test::heel_tube();
+  const KnittabilityReport rep = check_knittability(heel);
+  EXPECT_TRUE(rep.ok()) << rep.text();
+  // the short rows must stay open: as rounds they hold short-row ends
+  KnittingMap closed = heel;
+  closed.seam[3] = 0;
+  EXPECT_GT(check_knittability(closed).counts[static_cast<size_t>(KnitRule::ClosedRow)], 0);
+}
+
+}  // namespace

@@ -201,7 +201,7 @@ TEST(StitchMeshToMap, TubesRoundTripExactlyWithSeamsAndShaping) {
   KnittingMap turned = tube_knitting_map({8, 4, 0, 4});
   turned.direction = {1, 1, -1, -1};
   turned.seam = {0, 3, 3, 6};
-  for (const KnittingMap& m : {tapered, turned}) {
+  for (const KnittingMap& m : {tapered, turned, heel_tube()}) {
     const StitchMesh mesh = map_to_stitch_mesh_topology(m, kP);
     const KnittingMap back = stitch_mesh_to_map(mesh);
     EXPECT_TRUE(back.tubular());

@@ -6,6 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "convert/map_test_helpers.h"
+#include "knitforge/convert/map_knittability.h"
 #include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/machine/hand_instructions.h"
 #include "knitforge/machine/knit_graph_to_map.h"
@@ -199,6 +201,20 @@ TEST(TubeWriter, RoundsGoingTheOtherWayAndAnotherSeam) {
   expect_verified(p, map, prof);
 }
 
+TEST(TubeWriter, ShortRowsOnPartOfTheRoundTurnWithClosureTucks) {
+  const KnittingMap map = test::heel_tube();
+  const KnittabilityReport rep = check_knittability(map);
+  ASSERT_TRUE(rep.ok()) << rep.text();
+  for (const char* name : {"shima-swg091n2", "kniterate"}) {
+    SCOPED_TRACE(name);
+    const auto& prof = machine_profile(name);
+    const KnitoutProgram p = write_knitout(map, prof);
+    expect_verified(p, map, prof);
+    EXPECT_EQ(p.stats.inside_turns, 3);
+    EXPECT_EQ(p.stats.closed_turns, 3);
+  }
+}
+
 TEST(TubeWriter, HandMachineRefusesATubeSayingSo) {
   const auto& prof = machine_profile("brother-kh868");
   try {
@@ -223,7 +239,7 @@ TEST(TubeSimulator, KnitGraphOfATubeProgramIsTheTubularMap) {
   EXPECT_TRUE(f.map == map) << f.map.rows << "x" << f.map.cols;
 }
 
-// One rule broken per program: the simulator names the check.
+// One rule broken per program: the simulator refuses it and names the check.
 struct Broken {
   const char* machine;
   const char* check;
@@ -287,7 +303,11 @@ TEST(TubeSimulator, CraftedProgramsWithOneRuleBrokenAreRefused) {
     SCOPED_TRACE(std::string(b.machine) + " " + b.check);
     const std::string text = b.edit(programs.at(b.machine));
     ASSERT_NE(text, programs.at(b.machine)) << "the edit found nothing to break";
-    const KnitoutSimulation sim = simulate_knitout(parse_knitout(text), machine_profile(b.machine));
+    // judged as knitforge judges programs (simulate --strict all): the
+    // profile's warnings are refusals too
+    SimulateOptions so;
+    so.strict = all_rules_strict();
+    const KnitoutSimulation sim = simulate_knitout(parse_knitout(text), machine_profile(b.machine), so);
     const auto ids = check_ids(sim);
     EXPECT_FALSE(sim.ok());
     EXPECT_NE(std::find(ids.begin(), ids.end(), b.check), ids.end()) << sim.text();

@@ -95,6 +95,20 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
   return kind;
 }
 
+// The canonical seam of closed row r: the grid line just after the round's
+// last stitch in the row's direction ((last + 1) % cols for +1, the line left
+// of the last stitch for -1); seams that differ only by non-stitch cells
+// between the round's last and first stitch give the same knitting order.
+// stitch_mesh_to_map() reads tubes back with this seam. -1 when none.
+int canonical_seam(const KnittingMap& m, int r) {
+  if (!m.closed(r)) return -1;
+  int last = -1;
+  for (int c : row_columns(m, r))
+    if (is_stitch(m.at(r, c))) last = c;
+  if (last < 0) return -1;
+  return m.direction[static_cast<size_t>(r)] > 0 ? (last + 1) % m.cols : last;
+}
+
 constexpr const char* kCornerNames[4] = {"bottom-left", "bottom-right", "top-right", "top-left"};
 
 // The grid corners V(i, j) = i * (cols + 1) + j merged cell by cell
@@ -153,6 +167,12 @@ KnittingMap canonical_cells(const KnittingMap& map) {
   KnittingMap out = map;
   for (size_t i = 0; i < out.cells.size(); ++i) {
     if (out.cells[i] == CellType::Collapsed && kind[i] == 0) out.cells[i] = CellType::Empty;
+  }
+  for (int r = 0; r < out.rows; ++r) {
+    if (out.closed(r) && (out.direction[static_cast<size_t>(r)] == 1 || out.direction[static_cast<size_t>(r)] == -1)) {
+      const int s = canonical_seam(out, r);
+      if (s >= 0) out.seam[static_cast<size_t>(r)] = s;
+    }
   }
   return out;
 }

@@ -92,7 +92,7 @@ KnittingMap tube_knitting_map(const TubeMapOptions& o) {
       }
     }
   }
-  return map;
+  return canonical_cells(map);  // seams where a round whose first column ended starts
 }
 
 KnittingMap sample_knitting_map(std::string_view name) {

@@ -62,8 +62,8 @@ std::vector<int> topological_order(int n, const std::vector<std::pair<int, int>>
 
 // The map of a tube (every stitch labelled with its wale; `wrap` marks the
 // stitches whose Right edge closes a course). Columns are the labels minus
-// the smallest; a row with a wrap edge is closed, its seam where its first
-// stitch (the smallest index: stitches are numbered in knitting order) starts.
+// the smallest; a row with a wrap edge is closed, its seam just after its
+// last stitch (the largest index: stitches are numbered in knitting order).
 KnittingMap tube_map(const StitchMesh& mesh, const StitchAdjacency& adj, const std::vector<int>& row_pos,
                      const std::vector<int>& row, const std::vector<char>& wrap) {
   const int n = mesh.num_stitches();
@@ -97,11 +97,15 @@ KnittingMap tube_map(const StitchMesh& mesh, const StitchAdjacency& adj, const s
     map.at(r, c) = to_cell_type(st.type);
     if (st.yarn != 0) map.set_yarn(r, c, st.yarn);
   }
+  // the seam just after the round's last stitch (its largest index):
+  // canonical_seam()
+  std::vector<int> last(static_cast<size_t>(nrows), -1);
+  for (int s = 0; s < n; ++s) last[static_cast<size_t>(row_pos[row[s]])] = s;
   for (int s = 0; s < n; ++s)
     if (wrap[s]) {
       const int r = row_pos[row[s]];
-      const Stitch& f = mesh.stitches[first[r]];
-      map.seam[r] = f.direction > 0 ? f.wale - lo : (f.wale - lo + 1) % ncols;
+      const Stitch& l = mesh.stitches[last[static_cast<size_t>(r)]];
+      map.seam[r] = l.direction > 0 ? (l.wale - lo + 1) % ncols : l.wale - lo;
     }
   auto collapse = [&](int r, int c, int s, int t) {
     CellType& cell = map.at(r, c);

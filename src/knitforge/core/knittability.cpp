@@ -504,7 +504,14 @@ class MeshChecker {
         }
         int j = i;
         while (j < len && mesh_.stitches[l[j]].type == t) ++j;
-        if ((j - i) % 2 == 1) {
+        // In a tube a round can turn into a short row (or a short row end
+        // where the next round goes on): the round's stitch next to the
+        // stack is the turn's other half.
+        const auto in_round = [&](int k) {
+          return k >= 0 && k < len && rows_.cyclic[static_cast<size_t>(rows_.comp[l[k]])];
+        };
+        const bool round_partner = closed_courses_ && (in_round(i - 1) || in_round(j));
+        if ((j - i) % 2 == 1 && !round_partner) {
           const int s = l[j - 1];
           add(KnitRule::UnpairedShortRowEnd, {s},
               fmt::format("{}, a {}, has no partner: a short row turns in two stacked {} stitches (the last of one "
