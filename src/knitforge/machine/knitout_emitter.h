@@ -16,6 +16,7 @@
 
 #include "knitforge/machine/knitout_writer.h"
 #include "knitforge/machine/machine_profile.h"
+#include "knitforge/machine/needle_layout.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge::writer_detail {
@@ -140,6 +141,16 @@ class Emitter {
   KnitoutStats& stats_;
   int racking_ = 0;
 };
+
+/// Refuses a layout with problems: the first one's message, and how many more.
+/// \throw InvalidInput when `problems` is not empty.
+inline void refuse_layout_problems(const MachineProfile& prof, const std::vector<LayoutProblem>& problems,
+                                   const char* what) {
+  if (problems.empty()) return;
+  throw InvalidInput(fmt::format("machine '{}' cannot knit this {}: {}{}", prof.name, what, problems.front().message,
+                                 problems.size() > 1 ? fmt::format(" ({} more such places)", problems.size() - 1)
+                                                     : std::string()));
+}
 
 /// The warning for a map whose stitches use several yarns, all knitted with
 /// carrier `main`; nullopt for one yarn.

@@ -25,11 +25,7 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
   lo.close_turns = opt.close_turns;
   lo.max_closure_loops = 2;
   const TubeLayout L = plan_tube_layout(map, lo);
-  if (!L.problems.empty())
-    throw InvalidInput(fmt::format("machine '{}' cannot knit this tube: {}{}", prof.name, L.problems.front().message,
-                                   L.problems.size() > 1
-                                       ? fmt::format(" ({} more such places)", L.problems.size() - 1)
-                                       : std::string()));
+  writer_detail::refuse_layout_problems(prof, L.problems, "tube");
   const int width = L.max_needle - L.min_needle + 1;
   if (width > prof.needle_count)
     throw InvalidInput(fmt::format("the tube needs {} needles at its widest (every other needle on each bed, "

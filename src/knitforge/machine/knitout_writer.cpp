@@ -158,11 +158,7 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
   lo_opt.close_turns = opt.close_turns;
   lo_opt.max_closure_loops = 2;
   const NeedleLayout L = plan_needle_layout(map, lo_opt);
-  if (!L.problems.empty())
-    throw InvalidInput(fmt::format("machine '{}' cannot knit this map: {}{}", prof.name, L.problems.front().message,
-                                   L.problems.size() > 1
-                                       ? fmt::format(" ({} more such places)", L.problems.size() - 1)
-                                       : std::string()));
+  writer_detail::refuse_layout_problems(prof, L.problems, "map");
 
   const int width = L.max_needle - L.min_needle + 1;
   if (width > prof.needle_count)
