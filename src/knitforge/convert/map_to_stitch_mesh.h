@@ -47,8 +47,11 @@
 namespace knitforge {
 
 /// The map with every Collapsed cell that lies neither between two stitches
-/// of its row nor of its column (see the file comment) replaced by Empty: the
-/// canonical form stitch_mesh_to_map() produces. Other cells are unchanged.
+/// of its row nor of its column (see the file comment) replaced by Empty,
+/// and every closed row's seam made canonical (the grid line just after the
+/// round's last stitch in the row's direction; the knitting order stays the
+/// same): the canonical form stitch_mesh_to_map() produces. Other cells are
+/// unchanged.
 /// \throw InvalidInput as map_to_stitch_mesh_topology() for a Collapsed cell
 ///        inside both its row and its column, or inconsistent map sizes.
 KnittingMap canonical_cells(const KnittingMap& map);

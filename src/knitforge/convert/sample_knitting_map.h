@@ -41,8 +41,9 @@ struct TubeMapOptions {
   int every = 4;           ///< rounds from one decrease round to the next (>= 2); the first is round `every`
 };
 
-/// A tube: every row a round (closed, seam 0, knitted left to right on the
-/// front and back along the back bed), columns 0..round/2-1 the front half.
+/// A tube: every row a round (closed, knitted left to right on the front and
+/// back along the back bed; seam 0, made canonical by canonical_cells()),
+/// columns 0..round/2-1 the front half.
 /// Decrease round k (k = 1..decrease_rounds, at row k * every) ends one wale
 /// in each quarter of the round: in each half the wales at a quarter and at
 /// three quarters of its live wales, moved along by k so that the decreases

@@ -25,9 +25,10 @@
 /// Tubes: when the columns form a cycle and every stitch has a wale label,
 /// the mesh is read as a tube (docs/tubes.md): the labels (minus the
 /// smallest) are the columns, a Right neighbour with a smaller or equal label
-/// closes its row (a round), and the round's seam is where its lowest-index
-/// stitch starts (stitches numbered in knitting order, as
-/// map_to_stitch_mesh_topology() numbers them); the map gets a seam array.
+/// closes its row (a round), and the round's seam is the canonical one (as
+/// canonical_cells()): the grid line just after its highest-index stitch in
+/// its direction (stitches numbered in knitting order, as
+/// map_to_stitch_mesh_topology() numbers them).
 ///
 /// Runs in O(stitches + rows * cols).
 
