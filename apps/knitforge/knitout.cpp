@@ -86,10 +86,13 @@ void add_knitout_command(CLI::App& app, Action& action) {
       const KnitoutStats& s = prog.stats;
       note(fmt::format(
           "{}: {} courses, {} stitches, {} increases, {} decreases ({} bound off at the edge), {} shaping "
-          "transfers ({} in all), {} racks, {} short-row turns ({} closed), {} waste courses, needles f{}..f{} on {}",
+          "transfers ({} in all), {} racks, {} short-row turns ({} closed), {} waste courses, needles {} on {}",
           o->output, s.courses, s.map_knits + s.map_tucks, s.increases, s.decreases, s.edge_chained,
-          s.shaping_xfers, s.xfers, s.racks, s.inside_turns, s.closed_turns, s.waste_rows, s.first_needle,
-          s.last_needle, prof.name));
+          s.shaping_xfers, s.xfers, s.racks, s.inside_turns, s.closed_turns, s.waste_rows,
+          map.tubular() ? fmt::format("f{0}..f{1} and b{0}..b{1}, every other needle (a tube in the round)",
+                                      s.first_needle, s.last_needle)
+                        : fmt::format("f{}..f{}", s.first_needle, s.last_needle),
+          prof.name));
       if (prog.simulation) {
         const SimulationStats& ss = prog.simulation->stats;
         note(fmt::format("virtual machine: VALID, knit graph MATCHES the map; estimated knitting time {:.1f} min, "

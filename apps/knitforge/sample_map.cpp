@@ -14,6 +14,7 @@ void add_sample_map_command(CLI::App& app, Action& action) {
     std::vector<std::string> outputs;
     RandomMapOptions random;
     CupMapOptions cup;
+    TubeMapOptions tube;
     bool list = false;
   };
   auto o = std::make_shared<Opts>();
@@ -22,7 +23,7 @@ void add_sample_map_command(CLI::App& app, Action& action) {
   cmd->add_option("name", o->name, "Map name: " + names);
   cmd->add_option("-o,--output", o->outputs, "Output file(s): .csv, .png, .svg (repeatable)");
   cmd->add_flag("--list", o->list, "List the map names and exit");
-  auto* rows = cmd->add_option("--rows", o->random.rows, "random: number of map rows");
+  auto* rows = cmd->add_option("--rows", o->random.rows, "random, tube, tapered-tube: number of map rows");
   auto* cols = cmd->add_option("--cols", o->random.cols, "random: number of map columns");
   auto* ends = cmd->add_option("--short-row-ends", o->random.short_row_ends,
                                "random: number of short-row end stitches (even)");
@@ -32,6 +33,10 @@ void add_sample_map_command(CLI::App& app, Action& action) {
                                "random: widen at the bottom and narrow at the top");
   auto* wales = cmd->add_option("--wales", o->cup.wales, "cup: width in stitches");
   auto* turns = cmd->add_option("--turns", o->cup.turns, "cup: short-row turns per side in each wedge");
+  auto* round = cmd->add_option("--round", o->tube.round, "tube, tapered-tube: stitches round the tube (even)");
+  auto* drounds = cmd->add_option("--decrease-rounds", o->tube.decrease_rounds,
+                                  "tube, tapered-tube: rounds with 4 decreases each (one per quarter)");
+  auto* every = cmd->add_option("--every", o->tube.every, "tube, tapered-tube: rounds between decrease rounds");
   cmd->callback([=, &action] {
     action = [=]() -> int {
       if (o->list) {
@@ -42,11 +47,16 @@ void add_sample_map_command(CLI::App& app, Action& action) {
         throw UsageError("sample-map: give a map name and at least one -o FILE (see --list)");
       }
       for (const auto& out : o->outputs) check_output_file("-o", out, {".csv", ".png", ".svg"});
-      const bool random_opts = *rows || *cols || *ends || *scols || *seed || *bshape;
+      const bool is_tube = o->name == "tube" || o->name == "tapered-tube";
+      const bool random_opts = (*rows && !is_tube) || *cols || *ends || *scols || *seed || *bshape;
       const bool cup_opts = *wales || *turns;
+      const bool tube_opts = (*rows && is_tube) || *round || *drounds || *every;
       if (random_opts && o->name != "random") {
-        throw InvalidInput("--rows/--cols/--short-row-ends/--short-columns/--seed apply to 'random' only");
+        throw InvalidInput("--cols/--short-row-ends/--short-columns/--seed apply to 'random' only, --rows to "
+                           "'random' and the tubes");
       }
+      if ((*round || *drounds || *every) && !is_tube)
+        throw InvalidInput("--round/--decrease-rounds/--every apply to 'tube' and 'tapered-tube' only");
       if (cup_opts && o->name != "cup") throw InvalidInput("--wales/--turns apply to 'cup' only");
       KnittingMap map;
       if (o->name == "random" && random_opts) {
@@ -55,11 +65,22 @@ void add_sample_map_command(CLI::App& app, Action& action) {
         map = random_knitting_map(o->random);
       } else if (o->name == "cup" && cup_opts) {
         map = cup_knitting_map(o->cup);
+      } else if (is_tube && tube_opts) {
+        TubeMapOptions t;
+        if (o->name == "tapered-tube") t = {32, 24, 4, 4};
+        if (*rows) t.rows = o->random.rows;
+        if (*round) t.round = o->tube.round;
+        if (*drounds) t.decrease_rounds = o->tube.decrease_rounds;
+        if (*every) t.every = o->tube.every;
+        check_work({"sample-map tube", static_cast<double>(t.rows) * t.round, "cells", kDefaultMaxStitches, 0.0,
+                    "use fewer --rows / a smaller --round"});
+        map = tube_knitting_map(t);
       } else {
         map = sample_knitting_map(o->name);
       }
       for (const auto& out : o->outputs) write_map_by_extension(out, map);
-      note(fmt::format("{}: {} x {} map, {} stitches", o->name, map.rows, map.cols, map.num_stitches()));
+      note(fmt::format("{}: {} x {} {}map, {} stitches", o->name, map.rows, map.cols, map.tubular() ? "tubular " : "",
+                       map.num_stitches()));
       return 0;
     };
   });

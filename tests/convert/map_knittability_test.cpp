@@ -234,3 +234,90 @@ TEST(KnittabilityJson, ReportRoundTrips) {
   bad["violations"][0]["rule"] = "nope";
   EXPECT_THROW(knittability_report_from_json(bad), IOError);
 }
+
+namespace {
+
+KnittingMap tube(int round, int rows) {
+  KnittingMap m(rows, round, CellType::Knit);
+  m.direction.assign(static_cast<size_t>(rows), 1);
+  m.seam.assign(static_cast<size_t>(rows), 0);
+  return m;
+}
+
+TEST(MapKnittability, ARoundIsLegalInATubeButACyclicCourseIsNotInASheetMesh) {
+  const KnittingMap m = tube(8, 4);
+  const KnittabilityReport rep = check_knittability(m);
+  EXPECT_TRUE(rep.ok()) << rep.text();
+  EXPECT_EQ(rep.violations.size(), 0u) << rep.text();
+  // the same mesh judged as a sheet: every round is a cyclic course
+  const StitchMesh mesh = map_to_stitch_mesh_topology(m, KnitParams{});
+  const KnittabilityReport sheet = check_knittability(mesh);
+  EXPECT_EQ(count(sheet, KnitRule::CyclicRow), 4) << sheet.text();
+  KnittabilityOptions o;
+  o.closed_courses = true;
+  EXPECT_TRUE(check_knittability(mesh, o).ok()) << check_knittability(mesh, o).text();
+}
+
+TEST(MapKnittability, TubeRulesNameTheRowOrCell) {
+  KnittingMap odd = tube(7, 3);
+  EXPECT_EQ(count(check_knittability(odd), KnitRule::TubeLayout), 1);
+  KnittingMap open_start = tube(8, 3);
+  open_start.seam[0] = -1;
+  open_start.at(0, 0) = CellType::Collapsed;
+  EXPECT_GE(count(check_knittability(open_start), KnitRule::TubeLayout), 1);
+  KnittingMap hole = tube(8, 3);
+  hole.at(1, 5) = CellType::Empty;
+  const KnittabilityReport h = check_knittability(hole);
+  ASSERT_EQ(count(h, KnitRule::ClosedRow), 1) << h.text();
+  EXPECT_EQ(h.violations.front().cells.front(), (GridCell{1, 5}));
+  KnittingMap thin = tube(8, 3);  // the back half of round 1 keeps one stitch
+  for (int c : {5, 6, 7}) thin.at(1, c) = CellType::Collapsed;
+  EXPECT_GE(count(check_knittability(thin), KnitRule::TubeShaping), 1);
+  KnittingMap slit = tube(8, 3);  // an open row all round the tube
+  slit.seam[1] = -1;
+  const KnittabilityReport s = check_knittability(slit);
+  EXPECT_EQ(count(s, KnitRule::TubeShaping), 1) << s.text();
+  // the next round must start where the last ended
+  KnittingMap jump = tube(8, 3);
+  jump.seam = {0, 4, 4};
+  const KnittabilityReport j = check_knittability(jump);
+  EXPECT_EQ(count(j, KnitRule::BetweenRowContinuity), 1) << j.text();
+  jump.seam[1] = 7;  // starting one column back from the seam continues the yarn
+  jump.seam[2] = 7;
+  EXPECT_TRUE(check_knittability(jump).ok()) << check_knittability(jump).text();
+}
+
+TEST(MapKnittability, TaperedTubeDecreasesAreKnittableButNotSideBySide) {
+  KnittingMap m = tube(12, 5);
+  m.at(2, 2) = CellType::Decrease;
+  for (int r = 3; r < 5; ++r) m.at(r, 2) = CellType::Collapsed;
+  EXPECT_TRUE(check_knittability(m).ok()) << check_knittability(m).text();
+  m.at(2, 3) = CellType::Decrease;  // a neighbour decreasing in the same round
+  for (int r = 3; r < 5; ++r) m.at(r, 3) = CellType::Collapsed;
+  EXPECT_FALSE(check_knittability(m).ok());
+  // across the seam: columns 11 and 0 are neighbours in a round
+  KnittingMap w = tube(12, 5);
+  for (int c : {0, 11}) {
+    w.at(2, c) = CellType::Decrease;
+    for (int r = 3; r < 5; ++r) w.at(r, c) = CellType::Collapsed;
+  }
+  w.seam.assign(5, 6);
+  const KnittabilityReport rw = check_knittability(w);
+  EXPECT_FALSE(rw.ok()) << rw.text();
+}
+
+}  // namespace
+
+namespace {
+
+TEST(MapKnittability, AHeelWedgeOnPartOfTheRoundIsKnittable) {
+  const KnittingMap heel = knitforge::test::heel_tube();
+  const KnittabilityReport rep = check_knittability(heel);
+  EXPECT_TRUE(rep.ok()) << rep.text();
+  // the short rows must stay open: as rounds they hold short-row ends
+  KnittingMap closed = heel;
+  closed.seam[3] = 0;
+  EXPECT_GT(check_knittability(closed).counts[static_cast<size_t>(KnitRule::ClosedRow)], 0);
+}
+
+}  // namespace

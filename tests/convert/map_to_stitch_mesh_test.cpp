@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "convert/map_test_helpers.h"
@@ -273,3 +274,67 @@ TEST(MapToStitchMesh, NonManifoldResultIsInvalidInput) {
   const KnittingMap m = parse_map({"_K", "K_"});
   EXPECT_THROW(map_to_stitch_mesh_topology(m, kP), InvalidInput);
 }
+
+namespace {
+
+TEST(MapToStitchMesh, TubeRoundsCloseAcrossTheSeamInKnittingOrder) {
+  KnittingMap m(3, 6, CellType::Knit);
+  m.direction = {1, 1, -1};
+  m.seam = {0, 2, 2};
+  const StitchMesh mesh = map_to_stitch_mesh_topology(m, kP);
+  ASSERT_EQ(mesh.num_stitches(), 18);
+  const StitchAdjacency adj(mesh);
+  for (int s = 0; s < mesh.num_stitches(); ++s) {
+    for (Side side : {Side::Left, Side::Right, Side::Top, Side::Bottom}) {
+      const int t = adj.neighbor(s, side);
+      if (side == Side::Left || side == Side::Right) {
+        ASSERT_GE(t, 0) << "a round has no Left/Right boundary";
+        const int dc = ((mesh.stitches[t].wale - mesh.stitches[s].wale) % 6 + 6) % 6;
+        EXPECT_EQ(dc, side == Side::Right ? 1 : 5);
+        EXPECT_EQ(mesh.stitches[t].course, mesh.stitches[s].course);
+      }
+    }
+  }
+  // knitting order: row 0 from column 0, row 1 from column 2 going right,
+  // row 2 from column 1 going left (the first at or left of seam - 1)
+  EXPECT_EQ(mesh.stitches[0].wale, 0);
+  EXPECT_EQ(mesh.stitches[6].wale, 2);
+  EXPECT_EQ(mesh.stitches[11].wale, 1);
+  EXPECT_EQ(mesh.stitches[12].wale, 1);
+  EXPECT_EQ(mesh.stitches[13].wale, 0);
+  EXPECT_EQ(mesh.stitches[14].wale, 5);
+  // no boundary roles on the rounds' sides, cast-on below and bind-off above
+  for (const Stitch& s : mesh.stitches) {
+    EXPECT_EQ((s.roles & (kRoleOutsideIncrease | kRoleOutsideDecrease)), 0);
+    EXPECT_EQ((s.roles & kRoleCastOn) != 0, s.course == 0);
+    EXPECT_EQ((s.roles & kRoleBindOff) != 0, s.course == 2);
+  }
+  // the flat positions lie on a cylinder of circumference 6 stitch widths
+  const double radius = 6 * kP.stitch_width / (2 * 3.14159265358979323846);
+  for (const Vec3& v : mesh.vertices) EXPECT_NEAR(std::hypot(v.x(), v.z()), radius, 1e-9);
+  // the same cells as a sheet have open rows
+  KnittingMap sheet = m;
+  sheet.seam.clear();
+  const StitchMesh flat = map_to_stitch_mesh_topology(sheet, kP);
+  const StitchAdjacency fadj(flat);
+  int open_sides = 0;
+  for (int s = 0; s < flat.num_stitches(); ++s) open_sides += fadj.neighbor(s, Side::Right) < 0;
+  EXPECT_EQ(open_sides, 3);
+}
+
+TEST(MapToStitchMesh, ClosedRowsRefuseShortRowEndsAndEmptyCells) {
+  KnittingMap m(2, 4, CellType::Knit);
+  m.seam = {0, 0};
+  m.direction = {1, 1};
+  m.at(1, 3) = CellType::Empty;
+  EXPECT_THROW(map_to_stitch_mesh_topology(m, kP), InvalidInput);
+  m.at(1, 3) = CellType::ShortRowRight;
+  try {
+    map_to_stitch_mesh_topology(m, kP);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("closed row"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

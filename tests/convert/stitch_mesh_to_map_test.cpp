@@ -9,6 +9,7 @@
 #include "convert/map_test_helpers.h"
 #include "knitforge/convert/map_to_stitch_mesh.h"
 #include "knitforge/convert/random_knitting_map.h"
+#include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/core/stitch_adjacency.h"
 
 using namespace knitforge;
@@ -187,3 +188,30 @@ TEST(StitchMeshToMap, LargeMapRoundTrips) {
   const KnittingMap back = stitch_mesh_to_map(mesh);
   EXPECT_TRUE(back == m);
 }
+
+namespace {
+
+TEST(StitchMeshToMap, TubesRoundTripExactlyWithSeamsAndShaping) {
+  TubeMapOptions o;
+  o.round = 16;
+  o.rows = 9;
+  o.decrease_rounds = 2;
+  o.every = 3;
+  KnittingMap tapered = tube_knitting_map(o);
+  KnittingMap turned = tube_knitting_map({8, 4, 0, 4});
+  turned.direction = {1, 1, -1, -1};
+  turned.seam = {0, 3, 3, 6};
+  for (const KnittingMap& m : {tapered, turned, heel_tube()}) {
+    const StitchMesh mesh = map_to_stitch_mesh_topology(m, kP);
+    const KnittingMap back = stitch_mesh_to_map(mesh);
+    EXPECT_TRUE(back.tubular());
+    EXPECT_EQ(back, m);
+    EXPECT_EQ(back.seam, m.seam);
+  }
+  // without wale labels a tube cannot be read
+  StitchMesh mesh = map_to_stitch_mesh_topology(turned, kP);
+  for (Stitch& s : mesh.stitches) s.wale = -1;
+  EXPECT_THROW(stitch_mesh_to_map(mesh), InvalidInput);
+}
+
+}  // namespace

@@ -115,3 +115,32 @@ TEST(KnittingMapCsv, WriterRejectsInconsistentMaps) {
 
 }  // namespace
 }  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+TEST(KnittingMapCsv, TubeHasASeamColumnAndRoundTrips) {
+  KnittingMap m(3, 4, CellType::Knit);
+  m.direction = {1, -1, 1};
+  m.seam = {0, -1, 2};
+  m.at(1, 0) = CellType::Collapsed;
+  const std::string csv = knitting_map_to_csv(m);
+  EXPECT_EQ(csv, "course,dir,seam,0,1,2,3\n2,>,2,K,K,K,K\n1,<,-,C,K,K,K\n0,>,0,K,K,K,K\n");
+  EXPECT_EQ(knitting_map_from_csv(csv, "t.csv"), m);
+  // an empty seam field reads as an open row too
+  EXPECT_EQ(knitting_map_from_csv("course,dir,seam,0,1,2,3\n2,>,2,K,K,K,K\n1,<,,C,K,K,K\n0,>,0,K,K,K,K\n", "t.csv"),
+            m);
+  // sheets keep their two leading columns
+  KnittingMap sheet = m;
+  sheet.seam.clear();
+  EXPECT_EQ(knitting_map_to_csv(sheet).rfind("course,dir,0,", 0), 0u);
+  try {
+    knitting_map_from_csv("course,dir,seam,0,1\n0,>,7,K,K\n", "t.csv");
+    FAIL() << "no exception";
+  } catch (const IOError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.csv:2, column 3: seam '7'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace knitforge

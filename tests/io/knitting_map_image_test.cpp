@@ -147,3 +147,46 @@ TEST(KnittingMapImage, OptionsAndMapsAreChecked) {
 
 }  // namespace
 }  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+KnittingMap tube_2x4() {
+  KnittingMap m(2, 4, CellType::Knit);
+  m.direction = {1, 1};
+  m.seam = {0, 1};
+  return m;
+}
+
+TEST(KnittingMapImage, TubeShowsTheFoldAndEachRoundsSeam) {
+  test::TempDir dir;
+  const int s = 10;
+  write_knitting_map_image(dir.path("t.png"), tube_2x4(), {.cell_size = s});
+  const Picture pic = read_png(dir.path("t.png"));
+  const Rgb fold{20, 20, 20}, seam{215, 25, 28}, light{166, 206, 227};
+  // the fold between columns 1 and 2, the whole height
+  EXPECT_EQ(pic.at(2 * s, 3), fold);
+  EXPECT_EQ(pic.at(2 * s, 2 * s - 3), fold);
+  // row 1 (top) starts at line 1, row 0 (bottom) at line 0
+  EXPECT_EQ(pic.at(1 * s, 3), seam);
+  EXPECT_EQ(pic.at(0, s + 3), seam);
+  EXPECT_EQ(pic.at(1 * s, s + 3), Rgb({150, 150, 150}));  // plain grid line where row 0 has no seam
+  EXPECT_EQ(pic.at(5, 5), light);
+  const std::string svg = knitting_map_svg(tube_2x4());
+  auto count = [&](const std::string& what) {
+    int n = 0;
+    for (size_t i = svg.find(what); i != std::string::npos; i = svg.find(what, i + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("class=\"fold\""), 1);
+  EXPECT_EQ(count("class=\"seam\""), 2);
+  EXPECT_EQ(count(">front</text>"), 1);
+  EXPECT_EQ(count(">back</text>"), 1);
+  // a sheet draws none of it
+  KnittingMap sheet = tube_2x4();
+  sheet.seam.clear();
+  EXPECT_EQ(knitting_map_svg(sheet).find("class=\"seam\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace knitforge

@@ -26,7 +26,11 @@ class MapChecker {
   MapChecker(const KnittingMap& m, const KnitParams& p) : m_(m), p_(p) {}
 
   std::vector<KnittabilityViolation> run() {
-    for (int r = 0; r < m_.rows; ++r) check_row(r);
+    if (m_.tubular()) check_tube();
+    for (int r = 0; r < m_.rows; ++r) {
+      if (m_.closed(r)) check_closed_row(r);
+      else check_row(r);
+    }
     for (int r = 0; r < m_.rows; ++r) {
       for (int c = 0; c < m_.cols; ++c) {
         if (m_.yarn_at(r, c) < 0) {
@@ -96,9 +100,87 @@ class MapChecker {
     }
   }
 
+  // Tubes (docs/tubes.md): the layout of the columns, the first and last
+  // rows, and the shaping a round can do.
+  void check_tube() {
+    const int C = m_.cols, h = m_.tube_half();
+    if (C < 4 || C % 2 != 0) {
+      add(KnitRule::TubeLayout, {{0, -1}},
+          fmt::format("the tube has {} columns; a tube needs an even number, at least 4 (columns 0..n/2-1 the "
+                      "front half, n/2..n-1 the back half)",
+                      C));
+      return;
+    }
+    if (m_.rows > 0 && !m_.closed(0))
+      add(KnitRule::TubeLayout, {{0, -1}},
+          "row 0 of the tube is open: a tube starts with a round (its cast-on goes round both beds); give row 0 a "
+          "seam");
+    if (m_.rows > 0 && !m_.closed(m_.rows - 1))
+      add(KnitRule::TubeLayout, {{m_.rows - 1, -1}},
+          fmt::format("the last row ({}) of the tube is open: a tube ends with a round (its bind-off goes round both "
+                      "beds); give it a seam",
+                      m_.rows - 1));
+    for (int r = 0; r < m_.rows; ++r) {
+      int lo = -1, hi = -1, front = 0, back = 0;
+      for (int c = 0; c < C; ++c) {
+        if (!is_stitch(m_.at(r, c))) continue;
+        if (lo < 0) lo = c;
+        hi = c;
+        (c < h ? front : back) += 1;
+      }
+      if (m_.closed(r) && (front < 2 || back < 2)) {
+        add(KnitRule::TubeShaping, {{r, -1}},
+            fmt::format("round {} holds {} stitch(es) on the front half and {} on the back half; each half of a "
+                        "round keeps at least 2, so that a decrease has a neighbour on its bed to be moved onto",
+                        r, front, back));
+      }
+      if (!m_.closed(r) && lo == 0 && hi == C - 1) {
+        add(KnitRule::TubeShaping, {{r, 0}, {r, C - 1}},
+            fmt::format("open row {} of the tube runs over the whole round (columns 0 to {}): a short row in a tube "
+                        "covers part of the round and leaves the other wales held; make it a round (give it a seam) "
+                        "or hold a wale",
+                        r, C - 1));
+      }
+    }
+  }
+  void check_closed_row(int r) {
+    if (m_.direction[r] != 1 && m_.direction[r] != -1) {
+      add(KnitRule::InvalidDirection, {{r, -1}},
+          fmt::format("row {} has direction {}; it must be +1 (left to right) or -1 (right to left)", r,
+                      static_cast<int>(m_.direction[r])));
+    }
+    bool any = false;
+    for (int c = 0; c < m_.cols; ++c) {
+      const CellType t = m_.at(r, c);
+      any = any || is_stitch(t);
+      if (t == CellType::Empty || t == CellType::ShortRowLeft || t == CellType::ShortRowRight) {
+        add(KnitRule::ClosedRow, {{r, c}},
+            fmt::format("cell (row {}, column {}) is {} but row {} is a round of the tube (closed, seam {}): a round "
+                        "knits every wale of the tube, so it holds only knit, increase, decrease and collapsed "
+                        "cells; make the row open (seam -) for a short row",
+                        r, c, name(t), r, m_.seam[static_cast<size_t>(r)]));
+      }
+    }
+    if (!any) {
+      add(KnitRule::EmptyRow, {{r, -1}},
+          fmt::format("row {} holds no stitch; remove the row (every map row is a course knitted in turn)", r));
+    }
+  }
   /// Nearest non-Collapsed cells to the left and right are stitches with
-  /// facing Right / Left sides.
+  /// facing Right / Left sides (cyclically in a closed row).
   bool inside_row(int r, int c) const {
+    if (m_.closed(r)) {
+      int l = c, rr = c;
+      for (int k = 1; k < m_.cols; ++k) {
+        l = (l - 1 + m_.cols) % m_.cols;
+        if (m_.at(r, l) != CellType::Collapsed) break;
+      }
+      for (int k = 1; k < m_.cols; ++k) {
+        rr = (rr + 1) % m_.cols;
+        if (m_.at(r, rr) != CellType::Collapsed) break;
+      }
+      return has_side(m_.at(r, l), Side::Right) && has_side(m_.at(r, rr), Side::Left);
+    }
     int l = c - 1, rr = c + 1;
     while (l >= 0 && m_.at(r, l) == CellType::Collapsed) --l;
     while (rr < m_.cols && m_.at(r, rr) == CellType::Collapsed) ++rr;
@@ -142,8 +224,7 @@ KnittabilityReport check_knittability(const KnittingMap& map, const KnitParams& 
   std::vector<GridCell> cell_of;
   cell_of.reserve(mesh.stitches.size());
   for (int r = 0; r < map.rows; ++r) {
-    for (int k = 0; k < map.cols; ++k) {
-      const int c = map.direction[r] > 0 ? k : map.cols - 1 - k;
+    for (const int c : row_columns(map, r)) {
       if (is_stitch(map.at(r, c))) cell_of.push_back({r, c});
     }
   }
@@ -153,6 +234,7 @@ KnittabilityReport check_knittability(const KnittingMap& map, const KnitParams& 
   }
   KnittabilityOptions all;
   all.max_violations = std::numeric_limits<int>::max();
+  all.closed_courses = map.tubular();
   KnittabilityReport rep = check_knittability(mesh, all);
   for (KnittabilityViolation& v : rep.violations) {
     v.cells.clear();

@@ -22,6 +22,15 @@ namespace knitforge {
 /// - collapsed-crossing: a Collapsed cell between two stitches of its row and
 ///   between two stitches of its column (nearest non-Collapsed cells with the
 ///   facing sides, docs/representations.md).
+/// Tubes (KnittingMap::seam, docs/tubes.md) add:
+/// - tube-layout: an odd number of columns or fewer than 4; row 0 or the last
+///   row open (cell col = -1);
+/// - closed-row: a round holding a short-row end or an Empty cell (the cell);
+///   the split-row check is left to this for rounds;
+/// - tube-shaping: a half of a round with fewer than 2 stitches (cell col =
+///   -1), an open row covering every column (its two end cells);
+/// and the mesh check runs with KnittabilityOptions::closed_courses (a round
+/// is no cyclic-row; between-row-continuity follows the knitting order).
 /// When there are none, the map is converted with
 /// map_to_stitch_mesh_topology() (a conversion failure, e.g. a stitch whose
 /// corners merge or a non-manifold corner, is reported as map-topology with

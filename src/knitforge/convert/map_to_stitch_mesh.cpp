@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <numeric>
 #include <string>
 
@@ -24,7 +25,17 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
   std::vector<uint8_t> kind(static_cast<size_t>(R) * C, 0);
   std::vector<uint8_t> ok(static_cast<size_t>(std::max(R, C)), 0);
   for (int r = 0; r < R; ++r) {
+    // A closed row is read as a loop: the scans start with the state the
+    // row's other end leaves (its last non-Collapsed cell).
     bool open = false;
+    if (m.closed(r)) {
+      for (int c = C - 1; c >= 0; --c) {
+        if (m.at(r, c) != CellType::Collapsed) {
+          open = has_side(m.at(r, c), Side::Right);
+          break;
+        }
+      }
+    }
     for (int c = 0; c < C; ++c) {
       const CellType t = m.at(r, c);
       if (t == CellType::Collapsed) {
@@ -34,6 +45,14 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
       }
     }
     open = false;
+    if (m.closed(r)) {
+      for (int c = 0; c < C; ++c) {
+        if (m.at(r, c) != CellType::Collapsed) {
+          open = has_side(m.at(r, c), Side::Left);
+          break;
+        }
+      }
+    }
     for (int c = C - 1; c >= 0; --c) {
       const CellType t = m.at(r, c);
       if (t == CellType::Collapsed) {
@@ -76,6 +95,20 @@ std::vector<uint8_t> classify_collapsed(const KnittingMap& m) {
   return kind;
 }
 
+// The canonical seam of closed row r: the grid line just after the round's
+// last stitch in the row's direction ((last + 1) % cols for +1, the line left
+// of the last stitch for -1); seams that differ only by non-stitch cells
+// between the round's last and first stitch give the same knitting order.
+// stitch_mesh_to_map() reads tubes back with this seam. -1 when none.
+int canonical_seam(const KnittingMap& m, int r) {
+  if (!m.closed(r)) return -1;
+  int last = -1;
+  for (int c : row_columns(m, r))
+    if (is_stitch(m.at(r, c))) last = c;
+  if (last < 0) return -1;
+  return m.direction[static_cast<size_t>(r)] > 0 ? (last + 1) % m.cols : last;
+}
+
 constexpr const char* kCornerNames[4] = {"bottom-left", "bottom-right", "top-right", "top-left"};
 
 // The grid corners V(i, j) = i * (cols + 1) + j merged cell by cell
@@ -109,6 +142,11 @@ UnionFind merge_corners(const KnittingMap& map) {
         default: break;
       }
     }
+    // A closed row's last column meets its first: the grid line cols is line 0.
+    if (map.closed(r)) {
+      uf.unite(V(r, C), V(r, 0));
+      uf.unite(V(r + 1, C), V(r + 1, 0));
+    }
   }
   return uf;
 }
@@ -129,6 +167,12 @@ KnittingMap canonical_cells(const KnittingMap& map) {
   KnittingMap out = map;
   for (size_t i = 0; i < out.cells.size(); ++i) {
     if (out.cells[i] == CellType::Collapsed && kind[i] == 0) out.cells[i] = CellType::Empty;
+  }
+  for (int r = 0; r < out.rows; ++r) {
+    if (out.closed(r) && (out.direction[static_cast<size_t>(r)] == 1 || out.direction[static_cast<size_t>(r)] == -1)) {
+      const int s = canonical_seam(out, r);
+      if (s >= 0) out.seam[static_cast<size_t>(r)] = s;
+    }
   }
   return out;
 }
@@ -162,6 +206,21 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
                                      "row (remove the row)",
                                      r));
     }
+    if (map.closed(r)) {
+      for (int c = 0; c < C; ++c) {
+        const CellType t = map.at(r, c);
+        if (t == CellType::Empty || t == CellType::ShortRowLeft || t == CellType::ShortRowRight) {
+          throw InvalidInput(fmt::format(
+              "knitting map row {} is a closed row (a round of the tube) but cell (row {}, column {}) is {}: a round "
+              "holds only knit, increase, decrease and collapsed cells; make the row open (a short row) or fill "
+              "the cell",
+              r, r, c, name(t)));
+        }
+      }
+      lo_stitch[r] = lo;
+      hi_stitch[r] = hi;
+      continue;
+    }
     for (int c = lo; c <= hi; ++c) {
       const CellType t = map.at(r, c);
       const bool splits = t == CellType::Empty || (c > lo && is_stitch(t) && !has_side(t, Side::Left)) ||
@@ -186,8 +245,7 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
   std::vector<std::pair<int, int>> cell_of_stitch;
   for (int r = 0; r < R; ++r) {
     const int d = map.direction[r];
-    for (int k = 0; k < C; ++k) {
-      const int c = d > 0 ? k : C - 1 - k;
+    for (const int c : row_columns(map, r)) {
       const CellType t = map.at(r, c);
       if (!is_stitch(t)) continue;
       Stitch s;
@@ -232,13 +290,21 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
       cell_of_stitch.emplace_back(r, c);
     }
   }
-  // Positions: mean of the merged grid corners.
+  // Positions: mean of the merged grid corners; a tube's corners lie on a
+  // cylinder of circumference cols * stitch_width round the y axis (the front
+  // half facing +z), so the wrap's two grid lines are one place.
   std::vector<int> count(mesh.vertices.size(), 0);
+  const double radius = C * params.stitch_width / (2 * std::numbers::pi);
   for (int i = 0; i <= R; ++i) {
     for (int j = 0; j <= C; ++j) {
       const int vi = vertex_of_root[uf.find(V(i, j))];
       if (vi < 0) continue;
-      mesh.vertices[vi] += Vec3(j * params.stitch_width, i * params.stitch_height, 0);
+      if (map.tubular()) {
+        const double a = 2 * std::numbers::pi * j / C;
+        mesh.vertices[vi] += Vec3(-radius * std::cos(a), i * params.stitch_height, radius * std::sin(a));
+      } else {
+        mesh.vertices[vi] += Vec3(j * params.stitch_width, i * params.stitch_height, 0);
+      }
       ++count[vi];
     }
   }
@@ -314,7 +380,7 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
     uint8_t roles = 0;
     if (edge_of_side(st.type, Side::Bottom) >= 0 && adj->neighbor(s, Side::Bottom) < 0) roles |= kRoleCastOn;
     if (edge_of_side(st.type, Side::Top) >= 0 && adj->neighbor(s, Side::Top) < 0) roles |= kRoleBindOff;
-    if (r > 0) {
+    if (r > 0 && !map.closed(r) && !map.closed(r - 1)) {
       if (c == lo_stitch[r] && c == lo_ext[r]) {
         if (lo_ext[r] < lo_ext[r - 1]) roles |= kRoleOutsideIncrease;
         if (lo_ext[r] > lo_ext[r - 1]) roles |= kRoleOutsideDecrease;

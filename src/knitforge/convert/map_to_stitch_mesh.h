@@ -15,7 +15,16 @@
 /// starts one). Collapsed cells between neither behave as Empty.
 ///
 /// Stitches are numbered in knitting order (row 0 first, each row in its
-/// direction); vertices are numbered in order of first use by the stitches.
+/// direction; row_columns()); vertices are numbered in order of first use by
+/// the stitches.
+///
+/// Tubes (KnittingMap::seam, docs/tubes.md): in a closed row the grid line
+/// cols is line 0 (V(i, cols) and V(i, 0) merge for the row's two grid rows),
+/// so its last column is the Left/Right neighbour of its first; Collapsed
+/// cells of a closed row are classified cyclically; a closed row's stitches
+/// are numbered from its seam; the initial positions lie on a cylinder of
+/// circumference cols * stitch_width round the y axis (front half facing +z);
+/// closed rows have no outside increase/decrease roles.
 /// Initial position of a vertex: the mean of its merged grid corners at
 /// (j * stitch_width, i * stitch_height, 0).
 ///
@@ -38,8 +47,11 @@
 namespace knitforge {
 
 /// The map with every Collapsed cell that lies neither between two stitches
-/// of its row nor of its column (see the file comment) replaced by Empty: the
-/// canonical form stitch_mesh_to_map() produces. Other cells are unchanged.
+/// of its row nor of its column (see the file comment) replaced by Empty,
+/// and every closed row's seam made canonical (the grid line just after the
+/// round's last stitch in the row's direction; the knitting order stays the
+/// same): the canonical form stitch_mesh_to_map() produces. Other cells are
+/// unchanged.
 /// \throw InvalidInput as map_to_stitch_mesh_topology() for a Collapsed cell
 ///        inside both its row and its column, or inconsistent map sizes.
 KnittingMap canonical_cells(const KnittingMap& map);
@@ -56,7 +68,8 @@ std::vector<int> map_corner_classes(const KnittingMap& map);
 ///        have the wrong sizes; a row direction is not +1 or -1; a row holds
 ///        no stitch; a row holds two separate runs of stitches (an Empty cell,
 ///        or a ShortRowRight / ShortRowLeft that is not the row's last /
-///        first stitch, splits it); a Collapsed cell is inside both its row
+///        first stitch, splits it); a closed row holds an Empty cell or a
+///        short-row end; a Collapsed cell is inside both its row
 ///        and its column; a stitch degenerates (two of its corners merge); or
 ///        the stitches do not form an oriented manifold mesh.
 StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams& params);

@@ -1,5 +1,7 @@
 #include "knitforge/convert/sample_knitting_map.h"
 
+#include <cstdint>
+
 #include <fmt/core.h>
 
 #include "knitforge/convert/map_to_stitch_mesh.h"
@@ -58,7 +60,51 @@ KnittingMap cup_knitting_map(const CupMapOptions& o) {
   return map_from_row_extents(n, rows);
 }
 
+KnittingMap tube_knitting_map(const TubeMapOptions& o) {
+  if (o.round < 8 || o.round % 2 != 0 || o.round > 100000)
+    throw InvalidInput(fmt::format("tube map: round must be even, 8..100000 stitches (got {})", o.round));
+  if (o.rows < 2 || o.rows > 100000)
+    throw InvalidInput(fmt::format("tube map: rows must be 2..100000 (got {})", o.rows));
+  if (o.every < 2) throw InvalidInput(fmt::format("tube map: every must be >= 2 rounds (got {})", o.every));
+  if (o.decrease_rounds < 0 || static_cast<int64_t>(o.decrease_rounds) * o.every > o.rows - 2)
+    throw InvalidInput(fmt::format("tube map: {} decrease rounds every {} rounds need at least {} rows (got {})",
+                                   o.decrease_rounds, o.every, static_cast<int64_t>(o.decrease_rounds) * o.every + 2,
+                                   o.rows));
+  const int C = o.round, h = C / 2;
+  if (h - 2 * o.decrease_rounds < 4)
+    throw InvalidInput(fmt::format("tube map: {} decrease rounds leave {} wales on each half of a {}-stitch round; "
+                                   "keep at least 4",
+                                   o.decrease_rounds, h - 2 * o.decrease_rounds, C));
+  KnittingMap map(o.rows, C, CellType::Knit);
+  map.direction.assign(static_cast<size_t>(o.rows), 1);
+  map.seam.assign(static_cast<size_t>(o.rows), 0);
+  for (int k = 1; k <= o.decrease_rounds; ++k) {
+    const int r = k * o.every;
+    for (int half = 0; half < 2; ++half) {
+      std::vector<int> live;
+      for (int c = half * h; c < (half + 1) * h; ++c)
+        if (map.at(r, c) == CellType::Knit) live.push_back(c);
+      const int n = static_cast<int>(live.size());
+      for (int q : {n / 4, (3 * n) / 4}) {
+        const int c = live[static_cast<size_t>((q + k) % n)];
+        map.at(r, c) = CellType::Decrease;
+        for (int rr = r + 1; rr < o.rows; ++rr) map.at(rr, c) = CellType::Collapsed;
+      }
+    }
+  }
+  return canonical_cells(map);  // seams where a round whose first column ended starts
+}
+
 KnittingMap sample_knitting_map(std::string_view name) {
+  if (name == "tube") return tube_knitting_map();
+  if (name == "tapered-tube") {
+    TubeMapOptions o;
+    o.round = 32;
+    o.rows = 24;
+    o.decrease_rounds = 4;
+    o.every = 4;
+    return tube_knitting_map(o);
+  }
   if (name == "rectangle") {
     KnittingMap map(30, 40, CellType::Knit);
     return map;
@@ -78,6 +124,6 @@ KnittingMap sample_knitting_map(std::string_view name) {
   throw InvalidInput(fmt::format("unknown sample map '{}' (known: {})", name, names));
 }
 
-std::vector<std::string> sample_map_names() { return {"rectangle", "cup", "random"}; }
+std::vector<std::string> sample_map_names() { return {"rectangle", "cup", "random", "tube", "tapered-tube"}; }
 
 }  // namespace knitforge

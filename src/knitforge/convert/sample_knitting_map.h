@@ -9,6 +9,10 @@
 ///   short-row ends, seed §1.2.2), then 8 full courses. Relaxed, it is a bowl.
 /// - "random": random_knitting_map() with 40 x 40 cells, 24 short-row ends,
 ///   4 short columns and seed 1.
+/// - "tube": a straight tube (docs/tubes.md), 24 stitches round, 20 rounds.
+/// - "tapered-tube": a tube of 32 stitches round narrowing to 16: 4 decrease
+///   rounds, every 4th round, each taking one stitch from every quarter of
+///   the round (two on each bed), spread round the circumference.
 
 #include <string>
 #include <string_view>
@@ -28,6 +32,26 @@ struct CupMapOptions {
 /// The short-row cup described in the file comment.
 /// \throw InvalidInput when the options do not fit (names the option).
 KnittingMap cup_knitting_map(const CupMapOptions& options = {});
+
+/// Options of the tube maps.
+struct TubeMapOptions {
+  int round = 24;          ///< stitches round the tube at the start (even, >= 8)
+  int rows = 20;           ///< rounds (>= 2)
+  int decrease_rounds = 0; ///< rounds with 4 decreases each (one per quarter of the round)
+  int every = 4;           ///< rounds from one decrease round to the next (>= 2); the first is round `every`
+};
+
+/// A tube: every row a round (closed, knitted left to right on the front and
+/// back along the back bed; seam 0, made canonical by canonical_cells()),
+/// columns 0..round/2-1 the front half.
+/// Decrease round k (k = 1..decrease_rounds, at row k * every) ends one wale
+/// in each quarter of the round: in each half the wales at a quarter and at
+/// three quarters of its live wales, moved along by k so that the decreases
+/// spiral and no two meet; the wale's column is Collapsed above.
+/// 	hrow InvalidInput when the options do not fit (names the option): odd or
+///        small round, too few rows for the decreases, fewer than 4 live
+///        wales left in a half.
+KnittingMap tube_knitting_map(const TubeMapOptions& options = {});
 
 /// The built-in map called `name`.
 /// \throw InvalidInput for an unknown name (the message lists the names).

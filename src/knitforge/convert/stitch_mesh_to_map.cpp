@@ -60,6 +60,80 @@ std::vector<int> topological_order(int n, const std::vector<std::pair<int, int>>
   return pos;
 }
 
+// The map of a tube (every stitch labelled with its wale; `wrap` marks the
+// stitches whose Right edge closes a course). Columns are the labels minus
+// the smallest; a row with a wrap edge is closed, its seam just after its
+// last stitch (the largest index: stitches are numbered in knitting order).
+KnittingMap tube_map(const StitchMesh& mesh, const StitchAdjacency& adj, const std::vector<int>& row_pos,
+                     const std::vector<int>& row, const std::vector<char>& wrap) {
+  const int n = mesh.num_stitches();
+  int lo = std::numeric_limits<int>::max(), hi = 0;
+  for (const Stitch& st : mesh.stitches) lo = std::min(lo, st.wale), hi = std::max(hi, st.wale);
+  const int nrows = static_cast<int>(*std::max_element(row_pos.begin(), row_pos.end())) + 1;
+  const int ncols = hi - lo + 1;
+  if (static_cast<int64_t>(ncols) * nrows > int64_t{1} << 31)
+    throw InvalidInput(fmt::format("stitch_mesh_to_map: the tube's map would be {} x {} cells", nrows, ncols));
+  KnittingMap map(nrows, ncols, CellType::Empty);
+  map.seam.assign(static_cast<size_t>(nrows), -1);
+  std::vector<int> first(static_cast<size_t>(nrows), -1), owner(static_cast<size_t>(nrows) * ncols, -1);
+  for (int s = 0; s < n; ++s) {
+    const Stitch& st = mesh.stitches[s];
+    const int r = row_pos[row[s]], c = st.wale - lo;
+    int& o = owner[static_cast<size_t>(r) * ncols + c];
+    if (o >= 0)
+      throw InvalidInput(fmt::format("stitches {} and {} both fall into map cell (row {}, column {}) of the tube; "
+                                     "their wale labels are not consistent",
+                                     o, s, r, c));
+    o = s;
+    if (first[r] < 0) {
+      first[r] = s;
+      map.direction[r] = st.direction;
+    } else if (mesh.stitches[first[r]].direction != st.direction) {
+      throw InvalidInput(fmt::format("stitches {} and {} lie in the same row (map row {}) but have directions {} and "
+                                     "{}; a row is knitted in one direction",
+                                     first[r], s, r, static_cast<int>(mesh.stitches[first[r]].direction),
+                                     static_cast<int>(st.direction)));
+    }
+    map.at(r, c) = to_cell_type(st.type);
+    if (st.yarn != 0) map.set_yarn(r, c, st.yarn);
+  }
+  // the seam just after the round's last stitch (its largest index):
+  // canonical_seam()
+  std::vector<int> last(static_cast<size_t>(nrows), -1);
+  for (int s = 0; s < n; ++s) last[static_cast<size_t>(row_pos[row[s]])] = s;
+  for (int s = 0; s < n; ++s)
+    if (wrap[s]) {
+      const int r = row_pos[row[s]];
+      const Stitch& l = mesh.stitches[last[static_cast<size_t>(r)]];
+      map.seam[r] = l.direction > 0 ? (l.wale - lo + 1) % ncols : l.wale - lo;
+    }
+  auto collapse = [&](int r, int c, int s, int t) {
+    CellType& cell = map.at(r, c);
+    if (is_stitch(cell))
+      throw InvalidInput(fmt::format("stitch {} lies in map cell (row {}, column {}) between the neighbours {} and "
+                                     "{}; the wale labels of the tube are not consistent",
+                                     owner[static_cast<size_t>(r) * ncols + c], r, c, s, t));
+    cell = CellType::Collapsed;
+  };
+  for (int s = 0; s < n; ++s) {
+    const int r = row_pos[row[s]], c = mesh.stitches[s].wale - lo;
+    const int right = adj.neighbor(s, Side::Right);
+    if (right >= 0) {
+      const int rc = mesh.stitches[right].wale - lo;
+      for (int cc = (c + 1) % ncols; cc != rc; cc = (cc + 1) % ncols) collapse(r, cc, s, right);
+    }
+    const int top = adj.neighbor(s, Side::Top);
+    if (top >= 0) {
+      if (mesh.stitches[top].wale != mesh.stitches[s].wale)
+        throw InvalidInput(fmt::format("stitch {} and its Top neighbour {} have wale labels {} and {}; the wales of a "
+                                       "tube must keep their labels",
+                                       s, top, mesh.stitches[s].wale, mesh.stitches[top].wale));
+      for (int rr = r + 1; rr < row_pos[row[top]]; ++rr) collapse(rr, c, s, top);
+    }
+  }
+  return map;
+}
+
 }  // namespace
 
 KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
@@ -122,6 +196,7 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
         "the mesh cannot be knitted bottom to top");
   }
 
+
   for (int s = 0; s < n; ++s) {
     const int t = adj.neighbor(s, Side::Right);
     if (t < 0) continue;
@@ -140,9 +215,25 @@ KnittingMap stitch_mesh_to_map(const StitchMesh& mesh) {
   }
   const std::vector<int> col_pos = topological_order(ncols, col_edges, col_key);
   if (col_pos.empty()) {
+    // A tube: every stitch has a wale label and some Right neighbour has a
+    // smaller or equal label (the course closes round the tube there). Wrap
+    // edges close a course; the labels are the columns.
+    bool tube = true;
+    bool any_wrap = false;
+    std::vector<char> wrap(static_cast<size_t>(n), 0);  // stitch s's Right edge closes its course
+    for (int s = 0; s < n; ++s) {
+      if (mesh.stitches[s].wale < 0) tube = false;
+      const int t = adj.neighbor(s, Side::Right);
+      if (t >= 0 && mesh.stitches[t].wale <= mesh.stitches[s].wale) wrap[s] = 1, any_wrap = true;
+    }
+    tube = tube && any_wrap;
+    if (tube) return tube_map(mesh, adj, row_pos, row, wrap);
+  }
+  if (col_pos.empty()) {
     throw InvalidInput(
         "stitch_mesh_to_map: the columns form a cycle (a wale is both left and right of another "
-        "one), e.g. a tube; cut the mesh open along a wale");
+        "one), e.g. a tube without wale labels; label the stitches' wales (Stitch::wale) or cut the mesh open "
+        "along a wale");
   }
 
   // Per-stitch map cell. Wale labels, when every stitch has one and they agree

@@ -22,6 +22,14 @@
 /// map_to_stitch_mesh_topology() of it gives the same stitches back, and for
 /// canonical maps map -> mesh -> map is the identity.
 ///
+/// Tubes: when the columns form a cycle and every stitch has a wale label,
+/// the mesh is read as a tube (docs/tubes.md): the labels (minus the
+/// smallest) are the columns, a Right neighbour with a smaller or equal label
+/// closes its row (a round), and the round's seam is the canonical one (as
+/// canonical_cells()): the grid line just after its highest-index stitch in
+/// its direction (stitches numbered in knitting order, as
+/// map_to_stitch_mesh_topology() numbers them).
+///
 /// Runs in O(stitches + rows * cols).
 
 #include "knitforge/core/knitting_map.h"

@@ -26,6 +26,7 @@ constexpr std::string_view kRuleIds[kNumKnitRules] = {
     "collapsed-crossing",     "split-row",
     "invalid-direction",      "invalid-yarn",
     "empty-row",              "map-topology",           "machine-limit",
+    "tube-layout",            "closed-row",             "tube-shaping",
 };
 
 constexpr std::string_view kSideNames[] = {"Bottom", "Right", "Top", "Left"};
@@ -119,19 +120,21 @@ std::vector<int> strongly_connected(int n, const std::vector<std::vector<int>>& 
 
 class MeshChecker {
  public:
-  explicit MeshChecker(const StitchMesh& m) : mesh_(m), adj_(m), n_(m.num_stitches()) {}
+  MeshChecker(const StitchMesh& m, bool closed_courses)
+      : mesh_(m), adj_(m), n_(m.num_stitches()), closed_courses_(closed_courses) {}
 
   std::vector<KnittabilityViolation> run() {
     build_proper_neighbours();
     rows_ = build_chains(n_, left_, right_);
     cols_ = build_chains(n_, down_, up_);
-    check_cyclic(rows_, KnitRule::CyclicRow, "course", "Left/Right");
+    if (!closed_courses_) check_cyclic(rows_, KnitRule::CyclicRow, "course", "Left/Right");
     check_cyclic(cols_, KnitRule::CyclicColumn, "wale", "Bottom/Top");
     check_helical_rows();
     check_helical_columns();
     check_directions();
     check_in_row_continuity();
-    check_one_stroke();
+    if (closed_courses_) check_stitch_order();
+    else check_one_stroke();
     check_shaping();
     return std::move(out_);
   }
@@ -345,6 +348,35 @@ class MeshChecker {
     }
   }
 
+  /// Tubes (KnittabilityOptions::closed_courses): the knitting order is the
+  /// stitch order. Stitch k+1 follows stitch k along its course, or k ends
+  /// its course (the next stitch along it is not k+1: the course's end, or
+  /// a round's last stitch before its seam) and k+1 starts the next course
+  /// touching k (a shared corner: the yarn goes straight on).
+  void check_stitch_order() {
+    for (int k = 0; k + 1 < n_; ++k) {
+      if (adj_.next_in_course(k) == k + 1) continue;
+      if (mesh_.stitches[k].course == mesh_.stitches[k + 1].course && mesh_.stitches[k].course >= 0) {
+        add(KnitRule::BetweenRowContinuity, {k, k + 1},
+            fmt::format("{} and {} are knitted one after the other in one course but are not neighbours along it",
+                        describe(k), describe(k + 1)));
+        continue;
+      }
+      bool touch = false;
+      const Stitch& a = mesh_.stitches[k];
+      const Stitch& b = mesh_.stitches[k + 1];
+      for (int i = 0; i < a.corners() && !touch; ++i)
+        for (int j = 0; j < b.corners() && !touch; ++j) touch = a.v[i] == b.v[j];
+      if (!touch) {
+        add(KnitRule::BetweenRowContinuity, {k, k + 1},
+            fmt::format("the course of {} ends there but the next course starts at {}, which does not touch it: "
+                        "the last stitch of a course must neighbour the first stitch of the next (seed §1.2.2); "
+                        "in a tube, move the seam or the short row's start",
+                        describe(k), describe(k + 1)));
+      }
+    }
+  }
+
   void check_one_stroke() {
     if (n_ == 0) return;
     std::vector<int> prev(n_);
@@ -472,7 +504,14 @@ class MeshChecker {
         }
         int j = i;
         while (j < len && mesh_.stitches[l[j]].type == t) ++j;
-        if ((j - i) % 2 == 1) {
+        // In a tube a round can turn into a short row (or a short row end
+        // where the next round goes on): the round's stitch next to the
+        // stack is the turn's other half.
+        const auto in_round = [&](int k) {
+          return k >= 0 && k < len && rows_.cyclic[static_cast<size_t>(rows_.comp[l[k]])];
+        };
+        const bool round_partner = closed_courses_ && (in_round(i - 1) || in_round(j));
+        if ((j - i) % 2 == 1 && !round_partner) {
           const int s = l[j - 1];
           add(KnitRule::UnpairedShortRowEnd, {s},
               fmt::format("{}, a {}, has no partner: a short row turns in two stacked {} stitches (the last of one "
@@ -487,6 +526,7 @@ class MeshChecker {
   const StitchMesh& mesh_;
   StitchAdjacency adj_;
   int n_;
+  bool closed_courses_ = false;
   std::vector<int> left_, right_, down_, up_;
   Chains rows_, cols_;
   std::vector<KnittabilityViolation> out_;
@@ -584,7 +624,7 @@ KnittabilityReport check_knittability(const StitchMesh& mesh, const Knittability
   if (opt.max_violations < 0) {
     throw InvalidInput(fmt::format("KnittabilityOptions::max_violations is {}; it must be >= 0", opt.max_violations));
   }
-  MeshChecker checker(mesh);
+  MeshChecker checker(mesh, opt.closed_courses);
   return make_knittability_report(checker.run(), opt);
 }
 

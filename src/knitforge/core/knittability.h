@@ -46,8 +46,12 @@ enum class KnitRule : uint8_t {
   MapTopology = 19,           ///< "map-topology": the map's cells do not form a valid stitch mesh
   // --- machine rules (machine/machine_knittability.h) ---
   MachineLimit = 20,          ///< "machine-limit": the machine cannot knit the map within its limits
+  // --- tube rules (convert/map_knittability.h, docs/tubes.md) ---
+  TubeLayout = 21,            ///< "tube-layout": a tube's columns, first row or seams cannot be knitted round
+  ClosedRow = 22,             ///< "closed-row": a round holds a cell a round cannot hold (short-row end, empty)
+  TubeShaping = 23,           ///< "tube-shaping": a short row or short column a tube cannot knit
 };
-inline constexpr int kNumKnitRules = 21;
+inline constexpr int kNumKnitRules = 24;
 
 
 
@@ -109,6 +113,13 @@ struct KnittabilityReport {
 struct KnittabilityOptions {
   /// Cap on the listed violations (the counts are always complete).
   int max_violations = 10000;
+  /// A tube (docs/tubes.md): courses that close on themselves are rounds,
+  /// not cyclic-row errors, and between-row-continuity follows the stitch
+  /// order (stitches numbered in knitting order, as
+  /// map_to_stitch_mesh_topology() numbers them): stitch k+1 follows k along
+  /// its course, or k ends its course and k+1, the next course's first
+  /// stitch, touches it. Set by the map check for tubular maps.
+  bool closed_courses = false;
 };
 
 /// Builds a report from violations found in any order: fills severity from

@@ -26,7 +26,8 @@ int KnittingMap::num_stitches() const {
 }
 
 bool KnittingMap::operator==(const KnittingMap& o) const {
-  if (rows != o.rows || cols != o.cols || cells != o.cells || direction != o.direction) return false;
+  if (rows != o.rows || cols != o.cols || cells != o.cells || direction != o.direction || seam != o.seam)
+    return false;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       if (yarn_at(r, c) != o.yarn_at(r, c)) return false;
@@ -50,12 +51,38 @@ void check_map_arrays(const KnittingMap& m) {
   if (!m.yarn.empty() && m.yarn.size() != n) {
     throw InvalidInput(fmt::format("knitting map holds {} yarn indices; expected none or {}", m.yarn.size(), n));
   }
+  if (!m.seam.empty()) {
+    if (m.seam.size() != static_cast<size_t>(m.rows)) {
+      throw InvalidInput(fmt::format("knitting map has {} rows but {} seam entries (expected none or one per row)",
+                                     m.rows, m.seam.size()));
+    }
+    for (int r = 0; r < m.rows; ++r) {
+      if (m.seam[static_cast<size_t>(r)] < -1 || m.seam[static_cast<size_t>(r)] >= m.cols) {
+        throw InvalidInput(fmt::format("knitting map row {} has seam {}; expected -1 (open row) or a line 0..{}", r,
+                                       m.seam[static_cast<size_t>(r)], m.cols - 1));
+      }
+    }
+  }
   for (size_t i = 0; i < n; ++i) {
     if (static_cast<uint8_t>(m.cells[i]) > static_cast<uint8_t>(CellType::Empty)) {
       throw InvalidInput(fmt::format("knitting map cell (row {}, column {}) has an unknown type {}", i / m.cols,
                                      i % m.cols, static_cast<int>(m.cells[i])));
     }
   }
+}
+
+std::vector<int> row_columns(const KnittingMap& m, int r) {
+  std::vector<int> out(static_cast<size_t>(m.cols));
+  const int d = m.direction[static_cast<size_t>(r)];
+  if (!m.closed(r)) {
+    for (int k = 0; k < m.cols; ++k) out[static_cast<size_t>(k)] = d > 0 ? k : m.cols - 1 - k;
+    return out;
+  }
+  const int s = m.seam[static_cast<size_t>(r)];
+  for (int k = 0; k < m.cols; ++k) {
+    out[static_cast<size_t>(k)] = d > 0 ? (s + k) % m.cols : ((s - 1 - k) % m.cols + m.cols) % m.cols;
+  }
+  return out;
 }
 
 }  // namespace knitforge

@@ -52,7 +52,11 @@ std::string knitting_map_to_csv(const KnittingMap& map) {
                                    "wrong size",
                                    map.rows, map.cols, map.cells.size(), map.direction.size(), map.yarn.size()));
   }
-  std::string out = "course,dir";
+  if (!map.seam.empty() && map.seam.size() != static_cast<size_t>(map.rows))
+    throw InvalidInput(fmt::format("knitting map {}x{}: {} seam entries (expected none or {})", map.rows, map.cols,
+                                   map.seam.size(), map.rows));
+  const bool tube = map.tubular();
+  std::string out = tube ? "course,dir,seam" : "course,dir";
   for (int c = 0; c < map.cols; ++c) out += fmt::format(",{}", c);
   out += '\n';
   for (int r = map.rows - 1; r >= 0; --r) {
@@ -61,6 +65,7 @@ std::string knitting_map_to_csv(const KnittingMap& map) {
       throw InvalidInput(fmt::format("knitting map row {} has direction {}; it must be +1 or -1", r, d));
     }
     out += fmt::format("{},{}", r, d > 0 ? '>' : '<');
+    if (tube) out += map.closed(r) ? fmt::format(",{}", map.seam[static_cast<size_t>(r)]) : std::string(",-");
     for (int c = 0; c < map.cols; ++c) {
       const int t = static_cast<int>(map.at(r, c));
       if (t < 0 || t > static_cast<int>(CellType::Empty)) {
@@ -103,18 +108,22 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
   if (fields.size() < 2 || !lower_eq(fields[0], "course") || !lower_eq(fields[1], "dir")) {
     fail_at(source, header_line, 1, "the header must start with 'course' and 'dir', then the column indices 0, 1, ...");
   }
-  const size_t cols = fields.size() - 2;
+  // A tube: a `seam` column after `dir`.
+  const bool tube = fields.size() >= 3 && lower_eq(fields[2], "seam");
+  const size_t first = tube ? 3 : 2;  // field index of column 0
+  const size_t cols = fields.size() - first;
   for (size_t c = 0; c < cols; ++c) {
     int64_t v = -1;
-    if (!parse_int64(fields[c + 2], v) || v != static_cast<int64_t>(c)) {
-      fail_at(source, header_line, c + 3,
+    if (!parse_int64(fields[c + first], v) || v != static_cast<int64_t>(c)) {
+      fail_at(source, header_line, c + first + 1,
               fmt::format("column header '{}' should be {} (the columns are numbered 0, 1, ... from the left)",
-                          fields[c + 2], c));
+                          fields[c + first], c));
     }
   }
   // Courses, top first.
   struct Row {
     int8_t dir;
+    int seam = -1;
     std::vector<CellType> cells;
     std::vector<int> yarn;
   };
@@ -126,10 +135,10 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
     split_fields(line, sep, fields);
     if (all_empty(fields)) continue;
     last_line = ln;
-    if (fields.size() != cols + 2) {
-      fail_at(source, ln, fields.size() > cols + 2 ? cols + 3 : fields.size() + 1,
-              fmt::format("{} fields, but the header has {} (course, dir and {} cells)", fields.size(), cols + 2,
-                          cols));
+    if (fields.size() != cols + first) {
+      fail_at(source, ln, fields.size() > cols + first ? cols + first + 1 : fields.size() + 1,
+              fmt::format("{} fields, but the header has {} (course, dir, {}{} cells)", fields.size(), cols + first,
+                          tube ? "seam and " : "", cols));
     }
     int64_t r = -1;
     if (!parse_int64(fields[0], r) || r < 0) {
@@ -153,10 +162,20 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
       fail_at(source, ln, 2, fmt::format("unknown direction '{}' (expected > for left to right or < for right "
                                          "to left)", fields[1]));
     }
+    if (tube && fields[2] != "-" && !fields[2].empty()) {
+      int64_t v = -1;
+      if (!parse_int64(fields[2], v) || v < 0 || v >= static_cast<int64_t>(cols)) {
+        fail_at(source, ln, 3,
+                fmt::format("seam '{}': expected - for an open row (a short row) or the line 0..{} where the "
+                            "round starts (0 = left of column 0)",
+                            fields[2], cols == 0 ? 0 : cols - 1));
+      }
+      row.seam = static_cast<int>(v);
+    }
     row.cells.resize(cols);
     row.yarn.assign(cols, 0);
     for (size_t c = 0; c < cols; ++c) {
-      const std::string_view f = fields[c + 2];
+      const std::string_view f = fields[c + first];
       if (f.empty()) {
         row.cells[c] = CellType::Empty;
         continue;
@@ -167,14 +186,14 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
         if (kCodes[k] == code) t = k;
       }
       if (t < 0) {
-        fail_at(source, ln, c + 3, fmt::format("unknown cell code '{}' (expected K, L, R, I, D, C or .)", f));
+        fail_at(source, ln, c + first + 1, fmt::format("unknown cell code '{}' (expected K, L, R, I, D, C or .)", f));
       }
       row.cells[c] = static_cast<CellType>(t);
       if (f.size() > 1) {
         int64_t y = -1;
         const std::string_view suffix = f.substr(1);
         if (suffix.front() == '+' || suffix.front() == '-' || !parse_int64(suffix, y) || y > 1000000) {
-          fail_at(source, ln, c + 3,
+          fail_at(source, ln, c + first + 1,
                   fmt::format("unknown cell code '{}': a code may only be followed by a yarn index (e.g. K2)", f));
         }
         row.yarn[c] = static_cast<int>(y);
@@ -189,9 +208,11 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
                         "missing)", expected + 1, expected));
   }
   KnittingMap map(static_cast<int>(rows.size()), static_cast<int>(cols));
+  if (tube) map.seam.assign(rows.size(), -1);
   for (int r = 0; r < map.rows; ++r) {
     const Row& row = rows[rows.size() - 1 - r];
     map.direction[r] = row.dir;
+    if (tube) map.seam[static_cast<size_t>(r)] = row.seam;
     for (int c = 0; c < map.cols; ++c) {
       map.at(r, c) = row.cells[c];
       if (any_yarn) map.set_yarn(r, c, row.yarn[c]);

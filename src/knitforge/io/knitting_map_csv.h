@@ -16,6 +16,17 @@
 /// field empty. A code may carry a yarn index suffix (`K2`); no suffix means
 /// yarn 0.
 ///
+/// A tube (KnittingMap::seam, docs/tubes.md) has a `seam` column after
+/// `dir`: the seam line where a closed row (a round) starts, 0..cols-1, or
+/// `-` for an open row (a short row on part of the round):
+///
+///     course,dir,seam,0,1,2,3,4,5
+///     1,>,0,K,K,K,K,K,K
+///     0,>,0,K,K,K,K,K,K
+///
+/// Columns 0..cols/2-1 are the front half, cols/2..cols-1 the back half.
+/// Sheets have no seam column (their files are unchanged).
+///
 /// The reader also accepts CRLF line endings, a UTF-8 byte-order mark, spaces
 /// around fields, double quotes around a field, lower-case codes, blank lines
 /// and `;` as the separator (detected from the header line).

@@ -18,6 +18,8 @@ namespace {
 
 constexpr Rgb kGridColour{150, 150, 150};
 constexpr Rgb kTextColour{40, 40, 40};
+constexpr Rgb kFoldColour{20, 20, 20};    // a tube's fold between its front and back halves
+constexpr Rgb kSeamColour{215, 25, 28};   // where a round of a tube starts
 
 void check_map(const KnittingMap& map, const MapImageOptions& options) {
   if (map.rows < 0 || map.cols < 0 || map.cells.size() != static_cast<size_t>(map.rows) * map.cols ||
@@ -27,6 +29,7 @@ void check_map(const KnittingMap& map, const MapImageOptions& options) {
                                    "wrong size",
                                    map.rows, map.cols, map.cells.size(), map.direction.size(), map.yarn.size()));
   }
+  check_map_arrays(map);  // seams
   for (size_t i = 0; i < map.cells.size(); ++i) {
     if (static_cast<int>(map.cells[i]) > static_cast<int>(CellType::Empty)) {
       throw InvalidInput(fmt::format("knitting map cell ({}, {}) has unknown type {}", i / map.cols,
@@ -116,6 +119,19 @@ void write_knitting_map_png(const std::string& path, const KnittingMap& map, con
   for (int x = 0; x < w; x += s) {
     for (int y = 0; y < h; ++y) put(x, y, kGridColour);
   }
+  if (map.tubular()) {
+    // The fold between the halves: a double line; each round's seam: its
+    // grid line drawn red, two pixels wide where the picture has room.
+    const int xf = map.tube_half() * s;
+    for (int y = 0; y < h; ++y)
+      for (int x = std::max(0, xf - 1); x <= std::min(w - 1, xf + 1); ++x) put(x, y, kFoldColour);
+    for (int r = 0; r < map.rows; ++r) {
+      if (!map.closed(r)) continue;
+      const int xs = map.seam[static_cast<size_t>(r)] * s, y0 = (map.rows - 1 - r) * s;
+      for (int y = y0; y <= y0 + s && y < h; ++y)
+        for (int x = xs; x <= std::min(w - 1, xs + 1); ++x) put(x, y, kSeamColour);
+    }
+  }
   write_png(path, image);
 }
 
@@ -124,7 +140,7 @@ std::string knitting_map_svg(const KnittingMap& map, const MapImageOptions& opti
   const int s = options.cell_size;
   const int font = std::clamp(s, 8, 12);
   const int ml = 6 * font / 2 + 8;  // room for course labels
-  const int mt = 8, mb = font + 10;
+  const int mt = 8, mb = (map.tubular() ? 2 : 1) * (font + 10);
   const int map_w = map.cols * s, map_h = map.rows * s;
 
   // Legend entries: swatch kind and label.
@@ -155,7 +171,7 @@ std::string knitting_map_svg(const KnittingMap& map, const MapImageOptions& opti
   }
   const int sw = 12, line_h = 18;
   const int lx = ml + map_w + 20;
-  const int legend_h = static_cast<int>(legend.size()) * line_h;
+  const int legend_h = static_cast<int>(legend.size() + (map.tubular() ? 2 : 0)) * line_h;
   const int width = lx + sw + 8 + 200;
   const int height = mt + std::max(map_h + mb, legend_h) + 8;
 
@@ -185,6 +201,23 @@ std::string knitting_map_svg(const KnittingMap& map, const MapImageOptions& opti
     }
   }
   o += "</g>\n<g class=\"glyphs\">\n" + glyphs + "</g>\n";
+  if (map.tubular()) {
+    const int xf = ml + map.tube_half() * s;
+    o += fmt::format("<g class=\"tube\">\n<line class=\"fold\" x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" "
+                     "stroke=\"{3}\" stroke-width=\"2\"/>\n",
+                     xf, mt, mt + map_h, hex(kFoldColour));
+    for (int r = 0; r < map.rows; ++r) {
+      if (!map.closed(r)) continue;
+      const int xs = ml + map.seam[static_cast<size_t>(r)] * s, y0 = mt + (map.rows - 1 - r) * s;
+      o += fmt::format("<line class=\"seam\" x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{3}\" "
+                       "stroke-width=\"2\"/>\n",
+                       xs, y0, y0 + s, hex(kSeamColour));
+    }
+    o += fmt::format("<text class=\"half-label\" x=\"{:g}\" y=\"{}\" text-anchor=\"middle\">front</text>\n"
+                     "<text class=\"half-label\" x=\"{:g}\" y=\"{}\" text-anchor=\"middle\">back</text>\n</g>\n",
+                     ml + map.tube_half() * s / 2.0, mt + map_h + 2 * font + 8,
+                     ml + (map.tube_half() + map.cols) * s / 2.0, mt + map_h + 2 * font + 8);
+  }
   o += fmt::format("<g class=\"labels\" fill=\"{}\">\n", hex(kTextColour));
   for (int r = 0; r < map.rows; r += 10) {
     o += fmt::format("<text class=\"course-label\" x=\"{}\" y=\"{:g}\" text-anchor=\"end\" "
@@ -212,6 +245,18 @@ std::string knitting_map_svg(const KnittingMap& map, const MapImageOptions& opti
     }
     o += fmt::format("<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\" fill=\"{}\">{}</text>\n", lx + sw + 6,
                      y0 + sw / 2, hex(kTextColour), e.label);
+  }
+  if (map.tubular()) {
+    const int y0 = mt + static_cast<int>(legend.size()) * line_h;
+    o += fmt::format("<line class=\"legend-fold\" x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{3}\" "
+                     "stroke-width=\"2\"/>\n<text x=\"{4}\" y=\"{5}\" dominant-baseline=\"middle\">fold: front "
+                     "half | back half</text>\n",
+                     lx + sw / 2, y0, y0 + sw, hex(kFoldColour), lx + sw + 6, y0 + sw / 2);
+    o += fmt::format("<line class=\"legend-seam\" x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{3}\" "
+                     "stroke-width=\"2\"/>\n<text x=\"{4}\" y=\"{5}\" dominant-baseline=\"middle\">seam: where the "
+                     "round starts</text>\n",
+                     lx + sw / 2, y0 + line_h, y0 + line_h + sw, hex(kSeamColour), lx + sw + 6,
+                     y0 + line_h + sw / 2);
   }
   o += "</g>\n</svg>\n";
   return o;

@@ -8,7 +8,9 @@
 /// (ShortRowLeft to the left, ShortRowRight to the right, Increase down,
 /// Decrease up) in stitch_type_colour(); thin grid lines between cells. A
 /// stitch of a non-zero yarn is tinted with yarn_colour(). The SVG adds course
-/// and wale index labels every 10 cells and a legend.
+/// and wale index labels every 10 cells and a legend. A tube (docs/tubes.md)
+/// adds the fold between its front and back halves (a dark double line) and
+/// each round's seam (its grid line in red); the SVG labels the halves.
 
 #include <string>
 

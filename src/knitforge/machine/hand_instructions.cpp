@@ -59,6 +59,12 @@ std::string side(int d) { return d > 0 ? "left" : "right"; }
 HandInstructions hand_instructions(const KnittingMap& map, const MachineProfile& prof,
                                    const HandInstructionOptions& opt) {
   validate_machine_profile(prof);
+  if (map.tubular())
+    throw InvalidInput(fmt::format(
+        "the map is a tube (knitted in the round on both beds, docs/tubes.md); the {} has {} and hand instructions "
+        "describe flat knitting on one bed: knit the tube on a two-bed machine (knitforge knitout --machine "
+        "kniterate), or open it along a wale into a sheet and sew the seam",
+        prof.display_name, prof.beds == 1 ? "one needle bed" : "two beds"));
   const int NB = prof.needle_count;
   NeedleLayoutOptions lo;
   lo.max_shift = std::max(1, NB);

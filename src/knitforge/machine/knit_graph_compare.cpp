@@ -98,18 +98,29 @@ GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& ma
     const Stitch& S = mesh.stitches[static_cast<size_t>(k)];
     const int li = fab[static_cast<size_t>(k)];
     const KnitLoop& L = graph.loops[static_cast<size_t>(li)];
-    if (L.direction != S.direction) {
-      report("direction", k, li,
-             fmt::format("{} is knitted in direction {} but its map row goes {}", cell(k),
-                         L.direction > 0 ? '+' : '-', S.direction > 0 ? '+' : '-'));
+    // A tube's back half is knitted on the back bed, against the row's
+    // direction (the round comes back along the back bed).
+    const bool back = map.on_back(S.wale);
+    const int machine_dir = back ? -S.direction : S.direction;
+    if (map.tubular() && L.needle.is_front_side() == back) {
+      report("bed", k, li,
+             fmt::format("{} lies on the {} half of the tube but is knitted on needle {}", cell(k),
+                         back ? "back" : "front", to_string(L.needle)));
     }
-    if (k + 1 < n && adj.next_in_course(k) == k + 1) {
+    if (L.direction != machine_dir) {
+      report("direction", k, li,
+             fmt::format("{} is knitted in direction {} but its map row goes {}{}", cell(k),
+                         L.direction > 0 ? '+' : '-', S.direction > 0 ? '+' : '-',
+                         back ? " (so its back-bed stitches go the other way)" : ""));
+    }
+    const bool same_bed = k + 1 < n && map.on_back(mesh.stitches[static_cast<size_t>(k + 1)].wale) == back;
+    if (k + 1 < n && same_bed && adj.next_in_course(k) == k + 1) {
       const KnitLoop& L2 = graph.loops[static_cast<size_t>(fab[static_cast<size_t>(k + 1)])];
-      if ((L2.slot - L.slot) * S.direction <= 0) {
+      if ((L2.slot - L.slot) * machine_dir <= 0) {
         report("course", k + 1, fab[static_cast<size_t>(k + 1)],
                fmt::format("{} follows {} in its course but its loop (needle {}) is not further along in "
                            "direction {} than the previous one (needle {})",
-                           cell(k + 1), cell(k), to_string(L2.needle), S.direction > 0 ? '+' : '-',
+                           cell(k + 1), cell(k), to_string(L2.needle), machine_dir > 0 ? '+' : '-',
                            to_string(L.needle)));
       }
     }

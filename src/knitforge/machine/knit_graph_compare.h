@@ -32,6 +32,11 @@
 ///  - decreases: the loop of a stitch without Top neighbour whose top
 ///    corner is on the bottom edge of a later stitch is pulled through by the
 ///    fabric loop of such a stitch.
+/// Tubes (KnittingMap::seam, docs/tubes.md): the stitches of the back half
+/// must be knitted on the back bed ("bed"), in the machine direction opposite
+/// to their row's ("direction"); the course check compares consecutive
+/// stitches on one bed (each in its machine direction) and skips the step
+/// across a fold.
 /// Maps whose rows are knitted with several yarns at once (jacquard) are not
 /// covered: formation order is then not the map's knitting order.
 
@@ -45,7 +50,7 @@ namespace knitforge {
 
 /// One disagreement between the knit graph and the map.
 struct GraphMismatch {
-  std::string kind;   ///< "count", "direction", "course", "wale", "decrease"
+  std::string kind;   ///< "count", "bed", "direction", "course", "wale", "decrease"
   int stitch = -1;    ///< map stitch index (knitting order), -1 when none
   int row = -1, col = -1;  ///< its map cell
   int loop = -1;      ///< knit graph loop, -1 when none

@@ -47,6 +47,35 @@ std::vector<Row> split_rows(const KnitGraph& g, const std::vector<int>& stitches
   return rows;
 }
 
+// The tubular map of a plain tube (docs/tubes.md): each round's first half
+// (`first` stitches, on the back bed when first_back, knitted in carriage
+// direction dir) and second half side by side, the front half in columns
+// 0..h-1 left to right; kept when the program knits exactly that map.
+void tube_map(const KnitGraph& g, KnitGraphFabric& out, int dir, bool first_back, int first) {
+  const int C = out.ring, h = C / 2;
+  if (C < 4 || C % 2 != 0 || first != h) return;  // not the two equal halves of our layout
+  // The row direction in column order: a front half going + is +1, a back
+  // half going - is +1 too (the round comes back along the back bed).
+  const int d = first_back ? -dir : dir;
+  KnittingMap m(out.rounds, C, CellType::Knit);
+  m.direction.assign(static_cast<size_t>(out.rounds), static_cast<int8_t>(d));
+  // the first stitch's column and the seam line
+  const int first_col = first_back ? (d > 0 ? h : C - 1) : (d > 0 ? 0 : h - 1);
+  const int seam = d > 0 ? first_col : (first_col + 1) % C;
+  m.seam.assign(static_cast<size_t>(out.rounds), seam);
+  std::vector<int> loc(static_cast<size_t>(out.rounds) * C, -1);
+  for (int r = 0; r < out.rounds; ++r) {
+    const std::vector<int> order = row_columns(m, r);
+    for (int k = 0; k < C; ++k)
+      loc[static_cast<size_t>(r) * C + order[static_cast<size_t>(k)]] =
+          out.loop_of_round_stitch[static_cast<size_t>(r) * C + k];
+  }
+  if (!check_knittability(m).ok() || !compare_knit_graph(g, m).ok()) return;
+  out.map = std::move(m);
+  out.loop_of_cell = loc;
+  for (size_t i = 0; i < loc.size(); ++i) out.cell_of_loop[static_cast<size_t>(loc[i])] = static_cast<int>(i);
+}
+
 }  // namespace
 
 KnitGraphFabric knit_graph_fabric(const KnitoutSimulation& sim) {
@@ -124,6 +153,8 @@ KnitGraphFabric knit_graph_fabric(const KnitoutSimulation& sim) {
         out.rounds = static_cast<int>(rows.size() / 2);
         out.ring = static_cast<int>(n);
         out.loop_of_round_stitch = std::move(round_loops);
+        tube_map(g, out, rows[0].dir, on_back(loop(rows[0].stitches.front())),
+                 static_cast<int>(rows[0].stitches.size()));
       } else {
         out.reason = "a tube knitted on both beds whose rounds change (shaped tubes are not drawn yet)";
       }

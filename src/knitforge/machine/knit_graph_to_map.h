@@ -37,8 +37,13 @@
 /// Tubes. When the rows alternate between the two beds and every row's
 /// stitches are on one bed (circular knitting: front pass, back pass, ...),
 /// each front row and the back row after it form one round; the tube is
-/// described by `rounds` x `ring` stitches (loop_of_round_stitch), not by a
-/// map. Only plain tubes (every round the same stitches) are described.
+/// described by `rounds` x `ring` stitches (loop_of_round_stitch). Only
+/// plain tubes (every round the same stitches) are described. When the two
+/// halves of a round have equal stitch counts, the tube also comes as its
+/// tubular map (KnittingMap::seam, docs/tubes.md: the front half in columns
+/// 0..ring/2-1, the seam where the rounds start), kept only when
+/// compare_knit_graph() finds the program knits exactly that map; `map`,
+/// `loop_of_cell` and `cell_of_loop` are then set as for sheets.
 
 #include <string>
 #include <vector>
@@ -54,8 +59,8 @@ struct KnitGraphFabric {
   std::string kind;
   std::string reason;
   std::vector<int> stitch_loops;  ///< the stitch loops, in formation order
-  // --- sheets ---
-  KnittingMap map;                ///< canonical and knittable when kind == "sheet"
+  // --- sheets (and tubes with a map) ---
+  KnittingMap map;                ///< canonical and knittable when kind == "sheet" (or a tube's map, see above)
   std::vector<int> loop_of_cell;  ///< rows*cols: the loop of each stitch cell, -1 elsewhere
   std::vector<int> cell_of_loop;  ///< per graph loop: row*cols+col of its cell, -1 when not a stitch
   // --- tubes ---

@@ -11,8 +11,10 @@
 #include <fmt/format.h>
 
 #include "knitforge/convert/map_knittability.h"
+#include "knitforge/machine/knitout_emitter.h"
 #include "knitforge/machine/knitout_extensions.h"
 #include "knitforge/machine/knitout_parse.h"
+#include "knitforge/machine/knitout_tube_writer.h"
 #include "knitforge/machine/needle_layout.h"
 #include "knitforge/util/errors.h"
 
@@ -20,100 +22,9 @@ namespace knitforge {
 
 namespace {
 
-char dir_char(int d) { return d > 0 ? '+' : '-'; }
-
-class Emitter {
- public:
-  Emitter(const MachineProfile& p, KnitoutStats& s) : prof_(p), stats_(s) {}
-
-  std::string out;
-  bool fabric = false;  ///< transfers now count as shaping transfers
-
-  template <typename... Args>
-  void line(fmt::format_string<Args...> f, Args&&... args) {
-    fmt::format_to(std::back_inserter(out), f, std::forward<Args>(args)...);
-    out.push_back('\n');
-  }
-  void comment(const std::string& text) { line("; {}", text); }
-
-  void knit(int d, int n, const std::string& cs) {
-    line("knit {} f{} {}", dir_char(d), n, cs);
-    ++stats_.knits;
-  }
-  void tuck(int d, int n, const std::string& cs) {
-    line("tuck {} f{} {}", dir_char(d), n, cs);
-    ++stats_.tucks;
-  }
-  void miss(int d, int n, const std::string& cs) { line("miss {} f{} {}", dir_char(d), n, cs); }
-  void rack(int r) {
-    if (r == racking_) return;
-    if (std::abs(r) > prof_.max_racking)
-      throw Error(fmt::format("internal: racking {} beyond the machine limit {}", r, prof_.max_racking));
-    line("rack {}", r);
-    racking_ = r;
-    ++stats_.racks;
-  }
-  void xfer_to_back(int n) {
-    line("xfer f{} b{}", n, n);
-    count_xfer();
-  }
-  void xfer_to_front(int n, int to) {
-    line("xfer b{} f{}", n, to);
-    count_xfer();
-  }
-  // Moves the loops of front needle n onto front needle n + d (|d| <= max racking).
-  void move_loops(int n, int d) {
-    rack(0);
-    xfer_to_back(n);
-    rack(d);
-    xfer_to_front(n, n + d);
-    rack(0);
-    stats_.transfer_passes += 2;
-  }
-  void carrier_in(const std::string& c) { line("{} {}", prof_.has_yarn_inserting_hook ? "inhook" : "in", c); }
-  void release(const std::string& c) {
-    if (prof_.has_yarn_inserting_hook) line("releasehook {}", c);
-  }
-  void carrier_out(const std::string& c) {
-    line("{} {}", prof_.has_yarn_inserting_hook ? "outhook" : "out", c);
-  }
-  // Knit a plain pass over needles lo..hi in direction d.
-  void knit_pass(int d, int lo, int hi, const std::string& c) {
-    if (d > 0)
-      for (int n = lo; n <= hi; ++n) knit(d, n, c);
-    else
-      for (int n = hi; n >= lo; --n) knit(d, n, c);
-  }
-  // Alternating tuck cast-on over lo..hi starting in direction d: every other
-  // needle from the far end of the pass, then the others back. Leaves the
-  // carrier beyond the end it started from.
-  void tuck_cast_on(int d, int lo, int hi, const std::string& c) {
-    if (d < 0) {
-      for (int n = hi; n >= lo; n -= 2) tuck(-1, n, c);
-      for (int n = lo; n <= hi; ++n)
-        if ((hi - n) % 2 != 0) tuck(+1, n, c);
-    } else {
-      for (int n = lo; n <= hi; n += 2) tuck(+1, n, c);
-      for (int n = hi; n >= lo; --n)
-        if ((n - lo) % 2 != 0) tuck(-1, n, c);
-    }
-  }
-  void settings(const SectionSettings& s) {
-    if (!s.stitch_number.empty()) line("x-stitch-number {}", s.stitch_number);
-    if (!s.xfer_stitch_number.empty()) line("x-xfer-stitch-number {}", s.xfer_stitch_number);
-    if (s.speed_number >= 0) line("x-speed-number {}", s.speed_number);
-    if (s.roller_advance >= 0) line("x-roller-advance {}", s.roller_advance);
-  }
-
- private:
-  void count_xfer() {
-    ++stats_.xfers;
-    if (fabric) ++stats_.shaping_xfers;
-  }
-  const MachineProfile& prof_;
-  KnitoutStats& stats_;
-  int racking_ = 0;
-};
+using writer_detail::dir_char;
+using writer_detail::Emitter;
+using writer_detail::several_yarns_warning;
 
 std::string pick_carrier(const std::string& wanted, const MachineProfile& p, size_t index, const char* role) {
   if (!wanted.empty()) {
@@ -204,17 +115,50 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
                                    "the full list",
                                    check.num_errors(), first_violation(check)));
 
+  // The self-check of every program (see the file comment).
+  auto verified = [&](KnitoutProgram prog) {
+    if (!opt.verify) return prog;
+    SimulateOptions so;
+    so.strict = all_rules_strict();
+    // a ;;Gauge: the user chose is a warning the program keeps
+    if (opt.gauge > 0 && opt.gauge != prof.gauge) so.strict[static_cast<size_t>(KnitoutRule::Header)] = false;
+    KnitoutSimulation sim = simulate_knitout(parse_knitout(prog.text), prof, so);
+    GraphComparison cmp = compare_knit_graph(sim.graph, map);
+    if (!sim.ok() || !cmp.ok()) {
+      std::string why;
+      for (const auto& dg : sim.diagnostics) {
+        if (dg.severity == Severity::Error) {
+          why = fmt::format("line {}: [{}] {}", dg.line, knitout_check_id(dg.check), dg.message);
+          break;
+        }
+      }
+      if (why.empty() && !cmp.issues.empty()) why = cmp.issues.front().message;
+      throw Error(fmt::format("knitforge wrote a program for machine '{}' that its own simulator rejects ({} error(s), "
+                              "{} mismatch(es) with the map): {}; this is a knitforge bug: please report it with the "
+                              "map",
+                              prof.name, sim.errors, cmp.mismatches, why));
+    }
+    prog.simulation = std::move(sim);
+    prog.comparison = std::move(cmp);
+    return prog;
+  };
+  if (map.tubular()) {
+    TubeWriterSetup setup;
+    setup.main_carrier = M;
+    setup.waste_carrier = W;
+    setup.draw_carrier = D;
+    setup.waste_rows = waste_rows;
+    setup.body = body;
+    return verified(write_tube_knitout(map, prof, opt, setup));
+  }
+
   NeedleLayoutOptions lo_opt;
   lo_opt.max_shift = prof.max_racking;
   lo_opt.max_stack = std::max(2, prof.max_transfer_stack);
   lo_opt.close_turns = opt.close_turns;
   lo_opt.max_closure_loops = 2;
   const NeedleLayout L = plan_needle_layout(map, lo_opt);
-  if (!L.problems.empty())
-    throw InvalidInput(fmt::format("machine '{}' cannot knit this map: {}{}", prof.name, L.problems.front().message,
-                                   L.problems.size() > 1
-                                       ? fmt::format(" ({} more such places)", L.problems.size() - 1)
-                                       : std::string()));
+  writer_detail::refuse_layout_problems(prof, L.problems, "map");
 
   const int width = L.max_needle - L.min_needle + 1;
   if (width > prof.needle_count)
@@ -233,23 +177,10 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
   e.out.reserve(static_cast<size_t>(map.rows) * map.cols * 20 + static_cast<size_t>(waste_rows) * 2000 + 4096);
 
   // yarns
-  {
-    std::set<int> yarns;
-    for (int r = 0; r < map.rows; ++r)
-      for (int c = 0; c < map.cols; ++c)
-        if (is_stitch(map.at(r, c))) yarns.insert(map.yarn_at(r, c));
-    if (yarns.size() > 1)
-      prog.warnings.push_back(fmt::format("the map uses {} yarns ({}); this program knits every stitch with carrier {}",
-                                          yarns.size(), fmt::join(yarns, ", "), M));
-  }
+  if (auto w = several_yarns_warning(map, M)) prog.warnings.push_back(*w);
 
   // 1. headers
-  e.line(";!knitout-2");
-  e.line(";;Machine: {}", prof.knitout_machine);
-  e.line(";;Gauge: {}", opt.gauge > 0 ? opt.gauge : prof.gauge);
-  if (prof.width_header) e.line(";;Width: {}", prof.needle_count);
-  e.line(";;Carriers: {}", fmt::join(prof.carriers, " "));
-  e.line(";;Position: {}", opt.position);
+  e.headers(opt);
   e.comment(fmt::format("knitforge: {} x {} knitting map, {} stitches, for {} ({})", map.rows, map.cols,
                         map.num_stitches(), prof.display_name, prof.name));
   e.comment(fmt::format("main yarn carrier {}; front bed sheet knitting on needles f{}..f{}", M, L.min_needle + offset,
@@ -473,31 +404,7 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
   st.last_needle = L.max_needle + offset;
   prog.text = std::move(e.out);
 
-  if (opt.verify) {
-    SimulateOptions so;
-    so.strict = all_rules_strict();
-    // a ;;Gauge: the user chose is a warning the program keeps
-    if (opt.gauge > 0 && opt.gauge != prof.gauge) so.strict[static_cast<size_t>(KnitoutRule::Header)] = false;
-    KnitoutSimulation sim = simulate_knitout(parse_knitout(prog.text), prof, so);
-    GraphComparison cmp = compare_knit_graph(sim.graph, map);
-    if (!sim.ok() || !cmp.ok()) {
-      std::string why;
-      for (const auto& dg : sim.diagnostics) {
-        if (dg.severity == Severity::Error) {
-          why = fmt::format("line {}: [{}] {}", dg.line, knitout_check_id(dg.check), dg.message);
-          break;
-        }
-      }
-      if (why.empty() && !cmp.issues.empty()) why = cmp.issues.front().message;
-      throw Error(fmt::format("knitforge wrote a program for machine '{}' that its own simulator rejects ({} error(s), "
-                              "{} mismatch(es) with the map): {}; this is a knitforge bug: please report it with the "
-                              "map",
-                              prof.name, sim.errors, cmp.mismatches, why));
-    }
-    prog.simulation = std::move(sim);
-    prog.comparison = std::move(cmp);
-  }
-  return prog;
+  return verified(std::move(prog));
 }
 
 }  // namespace knitforge

@@ -69,6 +69,10 @@
 /// steps), merges never stack more than max_transfer_stack loops, closure
 /// tucks keep held needles at <= 2 loops. Output is deterministic.
 ///
+/// Tubes: a tubular map (KnittingMap::seam) is knitted in the round on both
+/// beds by write_tube_knitout() (knitout_tube_writer.h, docs/tubes.md) after
+/// the same option, carrier and knittability checks, and verified the same way.
+///
 /// Yarn: every stitch is knitted with the main carrier; a map with several
 /// yarn indices is knitted in one yarn and a warning says so.
 

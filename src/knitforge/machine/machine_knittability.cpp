@@ -2,9 +2,12 @@
 
 #include <algorithm>
 
+#include <fmt/core.h>
+
 #include "knitforge/convert/map_knittability.h"
 #include "knitforge/machine/hand_instructions.h"
 #include "knitforge/machine/needle_layout.h"
+#include "knitforge/machine/tube_layout.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
@@ -26,13 +29,28 @@ KnittabilityReport check_machine_knittability(const KnittingMap& map, const Mach
     v.message = std::move(message);
     found.push_back(std::move(v));
   };
-  NeedleLayoutOptions lo;
-  lo.max_shift = profile.beds == 2 ? std::max(1, profile.max_racking) : std::max(1, profile.needle_count);
-  lo.max_stack = std::max(2, profile.max_transfer_stack);
-  lo.close_turns = options.close_turns;
-  const NeedleLayout layout = plan_needle_layout(map, lo);
-  for (const auto& p : layout.problems) add(p.row, p.col, p.message);
-  if (layout.problems.empty()) {
+  std::vector<LayoutProblem> problems;
+  if (map.tubular() && profile.beds != 2) {
+    add(-1, -1,
+        fmt::format("machine '{}' has one needle bed: a tube is knitted in the round on two beds (docs/tubes.md)",
+                    profile.name));
+    return make_knittability_report(std::move(found), report_options);
+  }
+  if (map.tubular()) {
+    TubeLayoutOptions lo;
+    lo.max_racking = profile.max_racking;
+    lo.max_stack = std::max(2, profile.max_transfer_stack);
+    lo.close_turns = options.close_turns;
+    problems = plan_tube_layout(map, lo).problems;
+  } else {
+    NeedleLayoutOptions lo;
+    lo.max_shift = profile.beds == 2 ? std::max(1, profile.max_racking) : std::max(1, profile.needle_count);
+    lo.max_stack = std::max(2, profile.max_transfer_stack);
+    lo.close_turns = options.close_turns;
+    problems = plan_needle_layout(map, lo).problems;
+  }
+  for (const auto& p : problems) add(p.row, p.col, p.message);
+  if (problems.empty()) {
     try {
       if (profile.beds == 2) {
         (void)write_knitout(map, profile, options);

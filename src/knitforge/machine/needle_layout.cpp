@@ -13,8 +13,11 @@ namespace knitforge {
 
 namespace {
 
-// alive[r*cols+c]: stitch cell, or Collapsed cell between two stitches of its column.
-std::vector<uint8_t> alive_cells(const KnittingMap& m) {
+int clamp_shift(int d, int t) { return d >= 0 ? std::min(d, t) : -std::min(-d, t); }
+
+}  // namespace
+
+std::vector<uint8_t> alive_wales(const KnittingMap& m) {
   std::vector<uint8_t> alive(m.cells.size(), 0);
   for (int c = 0; c < m.cols; ++c) {
     // nearest non-Collapsed cell below each row
@@ -39,59 +42,45 @@ std::vector<uint8_t> alive_cells(const KnittingMap& m) {
   return alive;
 }
 
-int clamp_shift(int d, int t) { return d >= 0 ? std::min(d, t) : -std::min(-d, t); }
+WaleTakers::WaleTakers(const KnittingMap& map) : cols_(map.cols) {
+  // Validates sizes, directions, one run per row, collapsed crossings,
+  // degenerate stitches and manifoldness, with messages naming the cell.
+  mesh_ = map_to_stitch_mesh_topology(map, KnitParams{});
+  cell_stitch_.assign(map.cells.size(), -1);
+  bottom_users_.resize(static_cast<size_t>(mesh_.num_vertices()));
+  for (int s = 0; s < mesh_.num_stitches(); ++s) {
+    const Stitch& st = mesh_.stitches[static_cast<size_t>(s)];
+    cell_stitch_[static_cast<size_t>(st.course) * cols_ + st.wale] = s;
+    for (int v : bottom_vertices(st)) bottom_users_[static_cast<size_t>(v)].push_back(s);
+  }
+}
 
-// For every stitch that ends its wale (looked up by its map cell): the wales
-// of the later stitches whose bottom edge touches its top, i.e. the wales
-// that must take its loop (docs/representations.md).
-class WaleTakers {
- public:
-  explicit WaleTakers(const KnittingMap& map) : cols_(map.cols) {
-    // Validates sizes, directions, one run per row, collapsed crossings,
-    // degenerate stitches and manifoldness, with messages naming the cell.
-    mesh_ = map_to_stitch_mesh_topology(map, KnitParams{});
-    cell_stitch_.assign(map.cells.size(), -1);
-    bottom_users_.resize(static_cast<size_t>(mesh_.num_vertices()));
-    for (int s = 0; s < mesh_.num_stitches(); ++s) {
-      const Stitch& st = mesh_.stitches[static_cast<size_t>(s)];
-      cell_stitch_[static_cast<size_t>(st.course) * cols_ + st.wale] = s;
-      for (int v : bottom_vertices(st)) bottom_users_[static_cast<size_t>(v)].push_back(s);
+std::vector<int> WaleTakers::takers(int row, int col, int after_row) const {
+  std::vector<int> w;
+  const int s = cell_stitch_[static_cast<size_t>(row) * cols_ + col];
+  if (s < 0) return w;
+  for (int v : top_vertices(mesh_.stitches[static_cast<size_t>(s)])) {
+    for (int u : bottom_users_[static_cast<size_t>(v)]) {
+      const Stitch& t = mesh_.stitches[static_cast<size_t>(u)];
+      if (t.course > after_row && t.wale != col) w.push_back(t.wale);
     }
   }
-  // Wales of stitches in rows > after_row touching the top of the stitch at (row, col).
-  std::vector<int> takers(int row, int col, int after_row) const {
-    std::vector<int> w;
-    const int s = cell_stitch_[static_cast<size_t>(row) * cols_ + col];
-    if (s < 0) return w;
-    for (int v : top_vertices(mesh_.stitches[static_cast<size_t>(s)])) {
-      for (int u : bottom_users_[static_cast<size_t>(v)]) {
-        const Stitch& t = mesh_.stitches[static_cast<size_t>(u)];
-        if (t.course > after_row && t.wale != col) w.push_back(t.wale);
-      }
-    }
-    std::sort(w.begin(), w.end());
-    w.erase(std::unique(w.begin(), w.end()), w.end());
-    return w;
-  }
-
- private:
-  int cols_;
-  StitchMesh mesh_;
-  std::vector<int> cell_stitch_;
-  std::vector<std::vector<int>> bottom_users_;
-};
-
-}  // namespace
+  std::sort(w.begin(), w.end());
+  w.erase(std::unique(w.begin(), w.end()), w.end());
+  return w;
+}
 
 NeedleLayout plan_needle_layout(const KnittingMap& map, const NeedleLayoutOptions& opt) {
   if (opt.max_shift < 1) throw InvalidInput("needle layout: max_shift must be >= 1");
   if (opt.max_stack < 2) throw InvalidInput("needle layout: max_stack must be >= 2");
   if (opt.max_closure_loops < 1) throw InvalidInput("needle layout: max_closure_loops must be >= 1");
   if (map.rows < 1 || map.cols < 1) throw InvalidInput("needle layout: the knitting map is empty");
+  if (map.tubular())
+    throw InvalidInput("needle layout: the knitting map is a tube; its layout is plan_tube_layout() (tube_layout.h)");
   const WaleTakers takers(map);
 
   const int R = map.rows, C = map.cols;
-  const std::vector<uint8_t> alive = alive_cells(map);
+  const std::vector<uint8_t> alive = alive_wales(map);
   auto is_alive = [&](int r, int c) { return alive[static_cast<size_t>(r) * C + c] != 0; };
 
   NeedleLayout L;

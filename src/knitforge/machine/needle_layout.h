@@ -81,6 +81,7 @@
 #include <vector>
 
 #include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
 
 namespace knitforge {
 
@@ -165,6 +166,29 @@ struct NeedleLayout {
 
   int needle_at(int r, int c) const { return needle[static_cast<size_t>(r) * cols + c]; }
   bool alive(int r, int c) const { return needle_at(r, c) != kNoNeedle; }
+};
+
+/// Per map cell (row-major): 1 when wale c is alive at row r (a stitch, or a
+/// Collapsed cell between two stitches of its column: a held loop).
+/// \pre check_map_arrays(map) passes.
+std::vector<uint8_t> alive_wales(const KnittingMap& map);
+
+/// For every stitch that ends its wale: the wales of the later stitches whose
+/// bottom edge touches its top, i.e. the wales that must take its loop
+/// (docs/representations.md). Built from map_to_stitch_mesh_topology().
+class WaleTakers {
+ public:
+  /// \throw InvalidInput as map_to_stitch_mesh_topology().
+  explicit WaleTakers(const KnittingMap& map);
+  /// Wales (sorted) of stitches in rows > after_row touching the top of the
+  /// stitch at (row, col); empty when none (or no stitch there).
+  std::vector<int> takers(int row, int col, int after_row) const;
+
+ private:
+  int cols_;
+  StitchMesh mesh_;
+  std::vector<int> cell_stitch_;
+  std::vector<std::vector<int>> bottom_users_;
 };
 
 /// Plans the layout (see the file comment). Transitions the machine cannot
