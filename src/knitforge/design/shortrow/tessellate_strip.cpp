@@ -238,7 +238,11 @@ std::vector<double> nearest_apex_distances(const Strip& s, const std::vector<Vec
 /// in-strip apex on the path (-1 if none); updates it.
 double apex_penalty(const Strip& s, const OpShape& sh, const std::vector<double>& fixed,
                     const Diffusion& dif, int& last) {
-  if (dif.mu <= 0.0) return 0.0;
+  if (dif.mu <= 0.0) {  // no penalty, but the most recent apex is still tracked (stacked A-advances)
+    for (int v : sh.apexes)
+      if (!s.on_wale_end(v)) last = v;
+    return 0.0;
+  }
   double pen = 0.0;
   for (int v : sh.apexes) {
     if (s.on_wale_end(v)) continue;
