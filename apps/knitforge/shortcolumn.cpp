@@ -29,6 +29,7 @@
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/knitting_map_image.h"
 #include "knitforge/io/mesh_io.h"
+#include "knitforge/io/png_image.h"
 #include "knitforge/io/polyline_obj.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/io/vertex_field.h"
@@ -36,6 +37,8 @@
 #include "knitforge/machine/machine_profile.h"
 #include "knitforge/report/machine_report.h"
 #include "knitforge/report/optimisation_plot.h"
+#include "knitforge/render/camera.h"
+#include "knitforge/render/raster_preview.h"
 #include "knitforge/report/report_html.h"
 #include "knitforge/util/atomic_file.h"
 #include "knitforge/util/number_list.h"
@@ -61,6 +64,23 @@ void write_vertex_coloured(const std::string& path, const TriMesh& surface, cons
   w.ascii = ascii;
   for (const Rgb8& c : scalar_colours(value, lo, hi > lo ? hi : lo + 1)) w.vertex_colours.push_back({c[0], c[1], c[2]});
   write_mesh(path, surface, w);
+}
+
+/// The same colours as a picture (640 x 480, framed as `knitforge render`
+/// frames a mesh; both sides drawn).
+void write_vertex_coloured_png(const std::string& path, const TriMesh& surface, const std::vector<double>& value,
+                               double lo, double hi) {
+  RenderMesh m;
+  m.name = "surface";
+  m.mesh = surface;
+  m.normals = vertex_normals(surface);
+  for (const Rgb8& c : scalar_colours(value, lo, hi > lo ? hi : lo + 1)) m.vertex_colours.push_back({c[0], c[1], c[2]});
+  RasterOptions ro;
+  ro.width = 640;
+  ro.height = 480;
+  ro.cull_back_faces = false;
+  const Camera camera = frame_points(surface.vertices, static_cast<double>(ro.width) / ro.height);
+  write_png(path, rasterize(std::span<const RenderMesh>(&m, 1), camera, ro));
 }
 
 nlohmann::json counts_json(const ShortColumnCounts& c) {
@@ -343,6 +363,8 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
         std::sort(sorted.begin(), sorted.end());
         const double p99 = sorted.empty() ? 1.0 : sorted[static_cast<size_t>(0.99 * (sorted.size() - 1))];
         write_vertex_coloured(out("divergence.ply"), surface, mag, 0.0, p99, o->ascii);
+        write_vertex_coloured_png(out("field.png"), surface, f, lo, hi);
+        write_vertex_coloured_png(out("divergence.png"), surface, mag, 0.0, p99);
         MeshWriteOptions plain;
         plain.ascii = o->ascii;
         write_mesh(out("target.ply"), surface, plain);
@@ -388,6 +410,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
       counts["refined_references"] = d.wales.refined_steps;
       counts["region_splits"] = d.wales.region_splits;
       counts["dropped_front_pieces"] = d.wales.dropped_pieces;
+      counts["dropped_remnants"] = d.wales.dropped_remnants;
       counts["moved_forks"] = d.wales.moved_forks;
       counts["pinched_vertices"] = d.wales.pinched_vertices;
       counts["split_vertices"] = d.split_vertices;

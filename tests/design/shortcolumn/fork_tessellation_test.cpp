@@ -147,6 +147,33 @@ TEST(ForkTessellation, WithoutDoubleAdvancesNoApexHoldsFourShortRowEnds) {
   EXPECT_NEAR(sum, strip_area(a, b), 1e-9);
 }
 
+TEST(ForkTessellation, WithoutDoubleAdvancesNoTwoAAdvancesShareAnInnerApex) {
+  // A three times as long as B and no apex diffusion: the shortest path
+  // needs A-advances; two in a row at one inner apex of B would stack four
+  // right ends there, so each inner apex takes at most one pair.
+  for (const bool fork : {false, true}) {
+    SCOPED_TRACE(fork);
+    std::vector<Vec3> a, b;
+    for (int k = 0; k <= 12; ++k) a.emplace_back(0.0, k * kSh, 0.0);
+    for (int l = 0; l <= 4; ++l) b.emplace_back(fork ? kSw * std::min(1.0, l / 2.0) : kSw, l * 3.0 * kSh, 0.0);
+    StripOptions o = fork_options(fork, false);
+    o.mu = 0.0;
+    const StripTessellation t = tessellate_strip(a, b, o);
+    const int inner_lo = static_cast<int>(a.size()) + 1, inner_hi = static_cast<int>(a.size() + b.size()) - 2;
+    std::vector<int> per_apex(a.size() + b.size(), 0);
+    for (const StripFace& f : t.faces)
+      if (f.type == StitchType::ShortRowRight)
+        ++per_apex[static_cast<size_t>(f.corners[static_cast<size_t>(apex_corner(f.type))])];
+    for (int v = inner_lo; v <= inner_hi; ++v) EXPECT_LE(per_apex[static_cast<size_t>(v)], 2) << "b_" << v - a.size();
+    int a_advances = 0;
+    for (const StripStep& s : t.steps) a_advances += s.op == StripOperator::AAdvance;
+    EXPECT_GE(a_advances, 2);
+    double sum = 0.0;
+    for (const StripFace& f : t.faces) sum += face_area(a, b, f);
+    EXPECT_NEAR(sum, strip_area(a, b), 1e-9);
+  }
+}
+
 TEST(ForkTessellation, AForkWhoseWalesDoNotMeetIsRejected) {
   std::vector<Vec3> a = straight(8), b = branch(8, false);
   b[0] = Vec3(0.5, 0.0, 0.0);

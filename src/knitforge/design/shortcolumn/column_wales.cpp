@@ -361,8 +361,10 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
   for (size_t v = 0; v < field.size(); ++v)
     if (!std::isfinite(field[v]))
       throw InvalidInput(fmt::format("short-column wales: field value of vertex {} is not finite", v));
-  if (!(o.min_segment_factor >= 0.0) || !(o.band_factor > 0.0) || !(o.distance_tolerance >= 0.0))
-    throw InvalidInput("short-column wales: min_segment_factor, band_factor and distance_tolerance must be >= 0 (band > 0)");
+  if (!(o.min_segment_factor >= 0.0) || !(o.band_factor > 0.0) || !(o.distance_tolerance >= 0.0) ||
+      !(o.min_region_stitches >= 0.0))
+    throw InvalidInput("short-column wales: min_segment_factor, band_factor, distance_tolerance and "
+                       "min_region_stitches must be >= 0 (band > 0)");
 
   ColumnWales out;
   out.surface_area = total_area(mesh);
@@ -888,6 +890,17 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       for (size_t c = 0; c < next.size(); ++c) {
         if (chains[c].empty()) {
           out.uncovered_area += total_area(next[c].mesh);
+          continue;
+        }
+        // A remnant smaller than two stitches ahead of the front would get
+        // a strip of its own (at least four segments long) whose stitches
+        // touch the rest of the fabric at a corner only, or not at all: the
+        // knitting order cannot reach them and the map degenerates there.
+        // It is left uncovered (a notch of less than two stitches).
+        const double area = total_area(next[c].mesh);
+        if (area < o.min_region_stitches * sw * sh) {
+          out.uncovered_area += area;
+          ++out.dropped_remnants;
           continue;
         }
         stack.push_back(std::move(next[c]));

@@ -80,6 +80,10 @@ struct ColumnWaleOptions {
   double band_factor = 1.6;
   /// At most this many advances (0 = 4 x area / (sw sh) + 100).
   int max_steps = 0;
+  /// A piece of the remaining region smaller than this many stitches
+  /// (sw x sh) is left uncovered instead of getting strips of its own (see
+  /// ColumnWales::dropped_remnants); 0 keeps every piece.
+  double min_region_stitches = 2.0;
 };
 
 /// The strip between an old front's samples (left, A) and a new wale (right,
@@ -107,6 +111,10 @@ struct ColumnWales {
   int refined_steps = 0;   ///< fill steps whose reference Alg. 3.3 lowered
   int region_splits = 0;   ///< times the remaining region fell into pieces
   int dropped_pieces = 0;  ///< front pieces no region continued (e.g. a pinched-off corner)
+  /// Pieces of the remaining region smaller than min_region_stitches left
+  /// uncovered (their area is in uncovered_area): a strip of their own would
+  /// meet the rest of the fabric at a corner only.
+  int dropped_remnants = 0;
   int moved_forks = 0;     ///< forks moved off a sample that already was an apex of that type
   int band_growths = 0;    ///< band radius doublings
   int pinched_vertices = 0; ///< vertices split where the remaining region touched itself (split_nonmanifold_vertices.h)

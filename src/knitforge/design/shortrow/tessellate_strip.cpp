@@ -238,7 +238,11 @@ std::vector<double> nearest_apex_distances(const Strip& s, const std::vector<Vec
 /// in-strip apex on the path (-1 if none); updates it.
 double apex_penalty(const Strip& s, const OpShape& sh, const std::vector<double>& fixed,
                     const Diffusion& dif, int& last) {
-  if (dif.mu <= 0.0) return 0.0;
+  if (dif.mu <= 0.0) {  // no penalty, but the most recent apex is still tracked (stacked A-advances)
+    for (int v : sh.apexes)
+      if (!s.on_wale_end(v)) last = v;
+    return 0.0;
+  }
   double pen = 0.0;
   for (int v : sh.apexes) {
     if (s.on_wale_end(v)) continue;
@@ -264,7 +268,7 @@ struct SearchResult {
 SearchResult search(const Strip& s, std::array<int, 2> from, std::array<int, 2> to,
                     double lambda, bool allow_fan, const std::vector<double>& fixed,
                     const Diffusion& dif, bool fork_start = false, bool fork_end = false,
-                    bool allow_double = true) {
+                    bool allow_double = true, bool allow_stacked_a = true) {
   auto node_ok = [&](int i, int j) {
     if ((i == from[0] && j == from[1]) || (i == to[0] && j == to[1])) return true;
     return s.bridge(2 * i, 2 * j) <= lambda;
@@ -304,6 +308,9 @@ SearchResult search(const Strip& s, std::array<int, 2> from, std::array<int, 2> 
             continue;
           if (starts_fork(op) != at_fork) continue;  // a fork start takes a fork operator, nothing else does
           if (!s.shape(op, i, j, sh)) continue;
+          // Two A-advances in a row share their apex b_2j: four stacked
+          // short-row ends, the same rule the double advances break.
+          if (!allow_stacked_a && op == StripOperator::AAdvance && last0 >= 0 && last0 == s.vid_b(2 * j)) continue;
           const int i2 = i + sh.di, j2 = j + sh.dj;
           if (ends_fork(op) != (fork_end && i2 == to[0] && j2 == to[1])) continue;
           if (i2 > to[0] || j2 > to[1] || !node_ok(i2, j2)) continue;
@@ -407,8 +414,11 @@ Vec3 wale_tangent(const std::vector<Vec3>& w, size_t k) {
   return w[hi] - w[lo];
 }
 
-StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
-                                   const StripOptions& o) {
+namespace {
+
+/// tessellate_strip() with two A-advances in a row at one apex allowed or not.
+StripTessellation tessellate_strip_with(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
+                                        const StripOptions& o, bool allow_stacked_a) {
   const int strip = o.strip_index;
   check_wale(a, "A (left)", strip);
   check_wale(b, "B (right)", strip);
@@ -523,7 +533,8 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
   auto run_part = [&](std::array<int, 2> from, std::array<int, 2> to, double lambda, bool allow_fan,
                       bool fork_start, bool fork_end) {
     const std::vector<double> fixed = nearest_apex_distances(s, placed, dif.length);
-    return search(s, from, to, lambda, allow_fan, fixed, dif, fork_start, fork_end, o.allow_double_advance);
+    return search(s, from, to, lambda, allow_fan, fixed, dif, fork_start, fork_end, o.allow_double_advance,
+                  allow_stacked_a);
   };
 
   // Bottom part (no lambda limit; always has a path thanks to the B-fan at a_0);
@@ -630,6 +641,21 @@ StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector
     }
   }
   return r;
+}
+
+}  // namespace
+
+StripTessellation tessellate_strip(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
+                                   const StripOptions& o) {
+  if (o.allow_double_advance) return tessellate_strip_with(a, b, o, true);
+  // Without double advances, two A-advances in a row are refused too (their
+  // shared apex holds four stacked short-row ends); only a strip with no
+  // path without them gets them.
+  try {
+    return tessellate_strip_with(a, b, o, false);
+  } catch (const SolverError&) {
+    return tessellate_strip_with(a, b, o, true);
+  }
 }
 
 }  // namespace knitforge

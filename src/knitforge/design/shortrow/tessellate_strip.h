@@ -188,6 +188,8 @@ struct StripOptions {
   /// IncreaseBB, DecreaseBB): their four stacked short-row ends violate the
   /// stacked-short-row-ends rule (knittability.md), so a route that must pass
   /// every rule turns them off; B can then be at most twice as long as A.
+  /// Off also refuses two A-advances in a row (they share their apex: the
+  /// same four stacked ends), unless the strip has no path without them.
   bool allow_double_advance = true;
 };
 
