@@ -1,7 +1,9 @@
-// End-to-end runs of `knitforge body make` and `knitforge body fit` (seed ch. 5).
+// End-to-end runs of `knitforge body make`, `fit`, `region` and `transfer` (seed ch. 5).
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
+#include "knitforge/evaluate/surface_distance.h"
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/surface_checks.h"
 #include "knitforge/io/mesh_io.h"
 
@@ -61,4 +63,69 @@ TEST_F(Cli, BodyBadInputExitsNonZeroAndWritesNothing) {
   EXPECT_NE(r.code, 0);
   r = run("body make --height -3 -o " + path("x.obj"));
   EXPECT_EQ(r.code, 2);  // a usage error (not a positive number)
+}
+
+TEST_F(Cli, BodyRegionCutsATorsoPanelThatTheDesignRoutesKnit) {
+  // A body, its torso front, and both design routes on it end to end:
+  // knittable, the program valid on the virtual machine.
+  CliRun r = run("body make --height 170 --chest 94 --waist 78 --pose a-pose -o " + path("body.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("body region " + path("body.obj") + " --part torso-front -o " + path("panel.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("body region: torso-front"), std::string::npos) << r.err;
+  const TriMesh panel = read_mesh(path("panel.obj"));
+  const SurfaceReport rep = validate_surface(panel);
+  EXPECT_TRUE(rep.is_disk) << rep.summary();
+  r = run("shortrow " + path("panel.obj") + " --stitch 8x6 --no-evaluate --no-report -o " + path("sr"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(slurp(path("sr/report.json")));
+  EXPECT_TRUE(j["knittable"].get<bool>());
+  EXPECT_EQ(j["machine"]["verdict"], "VALID");
+  EXPECT_EQ(j["machine"]["matches_map"], true);
+  r = run("flatten " + path("panel.obj") + " --stitch 8x6 --no-evaluate -o " + path("fl"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(slurp(path("fl/report.json")));
+  EXPECT_TRUE(j["knittable"].get<bool>());
+  EXPECT_EQ(j["machine"]["verdict"], "VALID");
+  // A body of another model topology and an unknown part are refused.
+  r = run("body region " + path("panel.obj") + " --part torso-front -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("not a body of the built-in model"), std::string::npos) << r.err;
+  r = run("body region " + path("body.obj") + " --part cape -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("torso-front"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.obj")));
+}
+
+TEST_F(Cli, BodyTransferMovesAGarmentToAnotherBody) {
+  // The garment: body A's vertices 5 mm out (an OBJ written here); body B
+  // the same model with a larger chest. The transferred garment keeps about
+  // 5 mm to B.
+  CliRun r = run("body make --height 170 --chest 90 --pose a-pose -o " + path("a.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("body make --height 170 --chest 110 --pose relaxed -o " + path("b.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh a = read_mesh(path("a.obj")), b = read_mesh(path("b.obj"));
+  TriMesh garment = a;
+  const std::vector<Vec3> n = vertex_normals(a);
+  for (size_t i = 0; i < garment.vertices.size(); ++i) garment.vertices[i] += 5.0 * n[i];
+  write_mesh(path("garment.obj"), garment);
+  r = run("body transfer " + path("garment.obj") + " --from " + path("a.obj") + " --to " + path("b.obj") + " -o " +
+          path("out.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh out = read_mesh(path("out.obj"));
+  ASSERT_EQ(out.vertices.size(), garment.vertices.size());
+  const std::vector<double> d = distances_to_surface(b, out.vertices);
+  double mean = 0.0;
+  for (double x : d) mean += x / static_cast<double>(d.size());
+  EXPECT_NEAR(mean, 5.0, 0.5);
+  // Bodies of different topologies are refused, and nothing is written.
+  TriMesh c = b;
+  c.faces.pop_back();
+  write_mesh(path("c.obj"), c);
+  r = run("body transfer " + path("garment.obj") + " --from " + path("a.obj") + " --to " + path("c.obj") + " -o " +
+          path("bad.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("same model"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("bad.obj")));
 }
