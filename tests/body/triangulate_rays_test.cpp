@@ -30,11 +30,12 @@ PinholeCamera look_at(const Vec3& eye, const Vec3& target) {
   return c;
 }
 
-// n cameras on a circle of radius 3 m around the body, 1.2 m high.
-std::vector<PinholeCamera> ring(int n) {
+// n cameras on an arc (`span` radians, centred on -y: in front of the
+// body) of a circle of radius 3 m around it, 1.2 m high.
+std::vector<PinholeCamera> ring(int n, double span = 2.0 * std::numbers::pi) {
   std::vector<PinholeCamera> cams;
   for (int i = 0; i < n; ++i) {
-    const double a = 2.0 * std::numbers::pi * (i + 0.25) / n;
+    const double a = -0.5 * std::numbers::pi + span * ((i + 0.5) / n - 0.5);
     cams.push_back(look_at({3000.0 * std::cos(a), 3000.0 * std::sin(a), 1200.0}, {0, 0, 1000}));
   }
   return cams;
@@ -44,7 +45,7 @@ TEST(TriangulateRays, TwoNoiselessRaysGiveThePointExactly) {
   const Vec3 x(123.0, -45.0, 1310.0);
   for (int n : {2, 3, 7}) {
     std::vector<Ray> rays;
-    for (const PinholeCamera& c : ring(n)) rays.push_back(camera_ray(c, project_to_pixel(c, x)));
+    for (const PinholeCamera& c : ring(n, std::numbers::pi)) rays.push_back(camera_ray(c, project_to_pixel(c, x)));
     const RayPoint p = triangulate_rays(rays);
     EXPECT_LT((p.point - x).norm(), 1e-8) << n << " rays";
     EXPECT_LT(p.rms_distance_mm, 1e-8);
@@ -69,14 +70,16 @@ TEST(TriangulateRays, ThePixelOfThePointIsOnItsRay) {
 
 TEST(TriangulateRays, ErrorFallsWithTheNumberOfViews) {
   // 1 pixel of Gaussian noise (focal 800 px at 3 m: about 3.75 mm at the
-  // body), 300 random points of a body's size per n.
+  // body), 300 random points of a body's size per n; the cameras spread
+  // over the half circle in front (two cameras 90 degrees apart; opposite
+  // cameras would look along one line and not fix the depth along it).
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<double> err;
   std::printf("views  mean error (mm)  rms ray distance (mm)\n");
   for (int n : {2, 3, 4, 6, 8, 12}) {
-    const std::vector<PinholeCamera> cams = ring(n);
+    const std::vector<PinholeCamera> cams = ring(n, std::numbers::pi);
     double sum = 0.0, ray = 0.0;
     const int trials = 300;
     for (int k = 0; k < trials; ++k) {

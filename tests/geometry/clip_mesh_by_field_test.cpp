@@ -74,7 +74,7 @@ TEST(ClipMeshByField, KeepsOrientationAndBothSidesTileTheMesh) {
 }
 
 TEST(ClipMeshByField, AllPositiveKeepsEverythingAllNegativeNothing) {
-  const TriMesh m = rectangle(20.0, 10.0, 3.0);
+  const TriMesh m = rectangle(20.0, 10.0, 2.0);
   const ClippedMesh all = clip_mesh_by_field(m, std::vector<double>(m.vertices.size(), 1.0));
   EXPECT_EQ(all.mesh.num_faces(), m.num_faces());
   EXPECT_EQ(all.mesh.num_vertices(), m.num_vertices());
@@ -84,7 +84,7 @@ TEST(ClipMeshByField, AllPositiveKeepsEverythingAllNegativeNothing) {
 }
 
 TEST(ClipMeshByField, RejectsBadInput) {
-  const TriMesh m = rectangle(20.0, 10.0, 3.0);
+  const TriMesh m = rectangle(20.0, 10.0, 2.0);
   EXPECT_THROW(clip_mesh_by_field(m, {1.0, 2.0}), InvalidInput);
   std::vector<double> f(m.vertices.size(), 1.0);
   f[3] = std::nan("");
