@@ -1,4 +1,7 @@
 // End-to-end runs of `knitforge body make`, `fit`, `region` and `transfer` (seed ch. 5).
+#include <cmath>
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
@@ -120,4 +123,60 @@ TEST_F(Cli, BodyRegionPanelIsKnittedAndAGarmentTransfersToAnotherBody) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("same model"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("bad.obj")));
+}
+
+TEST_F(Cli, BodyFitStartsFromKeypointsOfCalibratedViews) {
+  // A body turned to face +x; three cameras see its joints (the joints that
+  // body make --params writes, projected here); the fit starts from them.
+  {
+    std::ofstream pose(path("pose.json"));
+    pose << R"({"model": "knitforge-body", "rotations_deg": {"pelvis": [0, 0, 90]}, "translation_mm": [300, 200, 0]})";
+  }
+  CliRun r = run("body make --height 175 --chest 100 --pose " + path("pose.json") + " -o " + path("scan.obj") +
+                 " --params " + path("made.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto made = nlohmann::json::parse(slurp(path("made.json")));
+  nlohmann::json views;
+  views["units"] = "m";
+  for (int i = 0; i < 3; ++i) {
+    const double a = 0.9 * i - 0.9;
+    const Vec3 centre(300, 200, 950), eye = centre + Vec3(3000 * std::cos(a), 3000 * std::sin(a), 200);
+    const Vec3 z = (centre - eye).normalized(), x = z.cross(Vec3::UnitZ()).normalized(), y = z.cross(x);
+    Mat3 R;
+    R.row(0) = x.transpose();
+    R.row(1) = y.transpose();
+    R.row(2) = z.transpose();
+    const Vec3 t = -R * eye;
+    nlohmann::json c;
+    c["K"] = {{900, 0, 500}, {0, 900, 600}, {0, 0, 1}};
+    for (int k = 0; k < 3; ++k) c["R"].push_back({R(k, 0), R(k, 1), R(k, 2)});
+    c["t"] = {t.x() / 1000, t.y() / 1000, t.z() / 1000};
+    for (const auto& [name, p] : made["joints_mm"].items()) {
+      const Vec3 q = R * Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()) + t;
+      c["keypoints"][name] = {900 * q.x() / q.z() + 500, 900 * q.y() / q.z() + 600};
+    }
+    views["cameras"].push_back(c);
+  }
+  {
+    std::ofstream k(path("views.json"));
+    k << views.dump();
+  }
+  r = run("body fit " + path("scan.obj") + " --keypoints " + path("views.json") +
+          " --objective scan --iterations 25 -o " + path("fitted"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("19 keypoints from 3 views"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("fitted/params.json")));
+  EXPECT_LT(j["fit"]["keypoints"]["initial_joint_rms_mm"].get<double>(), 1.0);
+  EXPECT_LT(j["fit"]["rms_mm"].get<double>(), 1.0);
+  EXPECT_NEAR(j["measurements_mm"]["chest_girth"].get<double>(), 1000.0, 5.0);
+  // A keypoint that is no joint of the model is refused, naming it.
+  views["cameras"][0]["keypoints"]["nose"] = {1, 2};
+  views["cameras"][1]["keypoints"]["nose"] = {3, 4};
+  {
+    std::ofstream k(path("bad.json"));
+    k << views.dump();
+  }
+  r = run("body fit " + path("scan.obj") + " --keypoints " + path("bad.json") + " -o " + path("bad"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("'nose'"), std::string::npos) << r.err;
 }

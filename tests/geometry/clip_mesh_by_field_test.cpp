@@ -44,8 +44,11 @@ TEST(ClipMeshByField, ALinearFieldCutsAFlatMeshExactlyOnItsLevel) {
   const ClippedMesh n = clip_mesh_by_field(m, f, o);
   EXPECT_EQ(n.snapped_vertices, 0);
   EXPECT_NEAR(total_area(n.mesh), (75.0 - 23.4) * 100.0, 1e-6);
-  for (size_t i = 0; i < n.mesh.vertices.size(); ++i)
-    if (n.vertex_origin[i] >= 0) EXPECT_EQ(n.mesh.vertices[i], m.vertices[static_cast<size_t>(n.vertex_origin[i])]);
+  for (size_t i = 0; i < n.mesh.vertices.size(); ++i) {
+    if (n.vertex_origin[i] >= 0) {
+      EXPECT_EQ(n.mesh.vertices[i], m.vertices[static_cast<size_t>(n.vertex_origin[i])]);
+    }
+  }
 }
 
 TEST(ClipMeshByField, KeepsOrientationAndBothSidesTileTheMesh) {
@@ -69,7 +72,9 @@ TEST(ClipMeshByField, KeepsOrientationAndBothSidesTileTheMesh) {
     const Vec3 n = triangle_area_vector(a.mesh.vertices[static_cast<size_t>(t[0])],
                                         a.mesh.vertices[static_cast<size_t>(t[1])],
                                         a.mesh.vertices[static_cast<size_t>(t[2])]);
-    if (n.norm() > 1e-9) EXPECT_GT(n.dot(c), 0.0) << "face " << k;
+    if (n.norm() > 1e-9) {
+      EXPECT_GT(n.dot(c), 0.0) << "face " << k;
+    }
   }
 }
 
