@@ -17,6 +17,7 @@
 #include "knitforge/body/keypoint_views.h"
 #include "knitforge/body/skin_body.h"
 #include "knitforge/util/errors.h"
+#include "test_bodies.h"
 
 namespace knitforge {
 namespace {
@@ -117,11 +118,21 @@ TEST(PoseFromKeypoints, KeypointsFromViewsLetTheFitFindATurnedBody) {
 }
 
 TEST(PoseFromKeypoints, RejectsUnknownJointsAndTooFewKeypoints) {
-  const BodyModel& m = generated_body();
-  const BodyParams a = pose_preset(m, "a-pose");
-  EXPECT_THROW(pose_from_keypoints(m, {{"nose", {0, 0, 0}}, {"pelvis", {0, 0, 0}}, {"neck", {0, 0, 1}}}, a),
+  // The small test body (joints root, middle, tip): no model build needed.
+  const BodyModel m = test::tube_body_model(false);
+  const BodyParams a = zero_params(m);
+  EXPECT_THROW(pose_from_keypoints(m, {{"nose", {0, 0, 0}}, {"root", {0, 0, 0}}, {"tip", {0, 0, 1}}}, a),
                InvalidInput);
-  EXPECT_THROW(pose_from_keypoints(m, {{"pelvis", {0, 0, 0}}, {"neck", {0, 0, 500}}}, a), InvalidInput);
+  EXPECT_THROW(pose_from_keypoints(m, {{"root", {0, 0, 0}}, {"tip", {0, 0, 500}}}, a), InvalidInput);
+  // Three keypoints of a bent tube give its joints back (no stature parameter: no scale).
+  BodyParams p = zero_params(m);
+  p.joint_rotations[1] = {0.0, 0.0, 0.6};
+  p.translation_mm = {5.0, -3.0, 2.0};
+  const PosedBody posed = pose_body(m, p);
+  const KeypointPose kp =
+      pose_from_keypoints(m, {{"root", posed.joints[0]}, {"middle", posed.joints[1]}, {"tip", posed.joints[2]}}, a);
+  EXPECT_LT(kp.rms_mm, 1e-9);
+  EXPECT_EQ(kp.scale, 1.0);
 }
 
 }  // namespace
