@@ -1,10 +1,16 @@
 // knitforge body: bodies from measurements (seed ch. 5).
 //   knitforge body make --height 176 --chest 96 ... [--pose a-pose|FILE.json] -o body.obj
+//   knitforge body fit SCAN [--keypoints K.json] -o fitted/
+//   knitforge body region fitted/|BODY.obj --part torso-front -o panel.obj
+//   knitforge body transfer GARMENT.obj --from A --to B -o out.obj
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
+#include <random>
 #include <chrono>
 
 #include <fmt/core.h>
@@ -12,9 +18,13 @@
 #include "cli_common.h"
 #include "knitforge/body/body_json.h"
 #include "knitforge/body/body_pose.h"
+#include "knitforge/body/cut_body_region.h"
 #include "knitforge/body/fit_body.h"
 #include "knitforge/body/generated_body.h"
+#include "knitforge/body/keypoint_views.h"
 #include "knitforge/body/make_body.h"
+#include "knitforge/body/pose_from_keypoints.h"
+#include "knitforge/body/transfer_garment.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/util/atomic_file.h"
@@ -30,6 +40,8 @@ struct MakeOptions {
   std::string output;
   std::string params;
   double edge = 15.0;
+  double noise = 0.0;
+  unsigned seed = 1;
   bool json = false;
 };
 
@@ -71,7 +83,16 @@ int run_make(const MakeOptions& o) {
     const std::filesystem::path parent = std::filesystem::path(file).parent_path();
     if (!file.empty() && !parent.empty()) std::filesystem::create_directories(parent);
   }
-  write_mesh(o.output, body.mesh);
+  if (o.noise > 0.0) {
+    // A stand-in for a scan: uniform noise per coordinate (deterministic).
+    TriMesh noisy = body.mesh;
+    std::mt19937 rng(o.seed);
+    std::uniform_real_distribution<double> u(-o.noise, o.noise);
+    for (Vec3& v : noisy.vertices) v += Vec3(u(rng), u(rng), u(rng));
+    write_mesh(o.output, noisy);
+  } else {
+    write_mesh(o.output, body.mesh);
+  }
   nlohmann::json report = body_params_to_json(*model, body.params, &body.fit.achieved);
   report["targets_mm"] = measurements_to_json(body.fit.targets);
   report["max_measurement_error_mm"] = body.fit.max_error_mm;
@@ -86,10 +107,11 @@ int run_make(const MakeOptions& o) {
   if (o.json) std::fputs((body_params_to_json(*model, body.params, &body.fit.achieved).dump(2) + "\n").c_str(), stdout);
   const auto& m = body.fit.achieved;
   note(fmt::format("body: {} vertices, height {:.1f} cm, chest {:.1f}, waist {:.1f}, hip {:.1f} cm "
-                   "(largest error {:.2f} mm), pose {} -> {}",
+                   "(largest error {:.2f} mm), pose {}{} -> {}",
                    body.mesh.num_vertices(), m[0] / 10.0, m[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
                    m[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
-                   m[static_cast<size_t>(Measurement::HipGirth)] / 10.0, body.fit.max_error_mm, o.pose, o.output));
+                   m[static_cast<size_t>(Measurement::HipGirth)] / 10.0, body.fit.max_error_mm, o.pose,
+                   o.noise > 0.0 ? fmt::format(", noise ±{:g} mm", o.noise) : "", o.output));
   return 0;
 }
 
@@ -99,6 +121,7 @@ struct FitOptions {
   std::string units = "mm";
   std::string pose = "a-pose";
   std::string objective = "best";
+  std::string keypoints;
   int iterations = BodyFitOptions{}.max_iterations;
   double max_distance = BodyFitOptions{}.max_distance_mm;
   bool json = false;
@@ -116,8 +139,39 @@ int run_fit(const FitOptions& o) {
                        : (o.objective == "both" ? BodyFitDirection::Both : BodyFitDirection::TemplateToScan);
   fo.max_iterations = o.iterations;
   fo.max_distance_mm = o.max_distance;
-  const BodyParams init = place_on_scan(model, load_pose(model, o.pose), scan);
   const auto start = std::chrono::steady_clock::now();
+  BodyParams init;
+  nlohmann::json keypoint_report;
+  if (o.keypoints.empty()) {
+    init = place_on_scan(model, load_pose(model, o.pose), scan);
+  } else {
+    // Seed §5.A: keypoints triangulated from the calibrated views, then the
+    // initial pose and placement from them.
+    const std::string text = read_text_file(o.keypoints, "keypoints file");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InvalidInput(fmt::format("{}: not valid JSON ({})", o.keypoints, e.what()));
+    }
+    const TriangulatedKeypoints tk = triangulate_keypoints(keypoint_views_from_json(j, o.keypoints));
+    std::map<std::string, Vec3> points;
+    keypoint_report = nlohmann::json::object();
+    for (const auto& [name, k] : tk.points) {
+      points[name] = k.point_mm;
+      keypoint_report["points_mm"][name] = {k.point_mm.x(), k.point_mm.y(), k.point_mm.z()};
+      keypoint_report["rms_ray_distance_mm"][name] = k.rms_ray_distance_mm;
+    }
+    keypoint_report["skipped"] = tk.skipped;
+    const KeypointPose kp = pose_from_keypoints(model, points, load_pose(model, o.pose));
+    keypoint_report["joints_used"] = kp.joints_used;
+    keypoint_report["initial_joint_rms_mm"] = kp.rms_mm;
+    keypoint_report["scale"] = kp.scale;
+    init = kp.params;
+    note(fmt::format("body fit: {} keypoints from {} views ({} seen in fewer than two skipped); initial pose: joints "
+                     "{:.1f} mm rms from them, scale {:.3f}",
+                     kp.joints_used, j["cameras"].size(), tk.skipped.size(), kp.rms_mm, kp.scale));
+  }
   const BodyFitResult fit =
       o.objective == "best" ? fit_body_multistart(model, scan, init, fo) : fit_body(model, scan, init, fo);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -137,7 +191,9 @@ int run_fit(const FitOptions& o) {
                    {"iterations", fit.iterations},
                    {"converged", fit.converged},
                    {"seconds", seconds},
-                   {"scan_points", scan.num_vertices()}};
+                   {"scan_points", scan.num_vertices()},
+                   {"units", o.units},
+                   {"keypoints", o.keypoints.empty() ? nlohmann::json(nullptr) : keypoint_report}};
   write_report_json((dir / "params.json").string(), report, o.json);
   // Per-vertex fit error of the fitted body to the scan surface; for a
   // point cloud (no faces), of every cloud point to the fitted body.
@@ -169,11 +225,134 @@ int run_fit(const FitOptions& o) {
   return 0;
 }
 
+struct RegionOptions {
+  std::string input;
+  std::string part;
+  std::string output;
+  std::string scan;
+  double edge = 0.0;
+  double model_edge = 15.0;
+  int remesh = BodyRegionOptions{}.remesh_iterations;
+};
+
+const BodyModel& model_with_edge(double edge, std::unique_ptr<BodyModel>& own) {
+  if (edge == GeneratedBodyOptions{}.edge_length) return generated_body();
+  GeneratedBodyOptions go;
+  go.edge_length = edge;
+  own = std::make_unique<BodyModel>(make_generated_body(go));
+  return *own;
+}
+
+int run_region(const RegionOptions& o) {
+  if (o.output.empty()) throw InvalidInput("body region: give the output mesh with -o FILE (.obj, .ply, .off, .stl)");
+  const BodyPart part = body_part_from_name(o.part);
+  std::unique_ptr<BodyModel> own;
+  const BodyModel& model = model_with_edge(o.model_edge, own);
+  TriMesh surface;
+  std::vector<double> field;
+  std::string source;
+  std::error_code ec;
+  if (std::filesystem::is_directory(o.input, ec)) {
+    // A fit's directory: the scan, with the field carried from the fitted body.
+    const std::filesystem::path dir(o.input);
+    const std::string params_path = (dir / "params.json").string();
+    nlohmann::json params;
+    try {
+      params = nlohmann::json::parse(read_text_file(params_path, "fit parameters"));
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InvalidInput(fmt::format("{}: not valid JSON ({})", params_path, e.what()));
+    }
+    std::string scan_path = o.scan;
+    if (scan_path.empty()) {
+      if (!params.contains("fit") || !params["fit"].contains("scan") || !params["fit"]["scan"].is_string())
+        throw InvalidInput(fmt::format("{}: names no scan (fit.scan); give it with --scan FILE", params_path));
+      scan_path = params["fit"]["scan"].get<std::string>();
+    }
+    const std::string units =
+        params.contains("fit") && params["fit"].contains("units") && params["fit"]["units"].is_string()
+            ? params["fit"]["units"].get<std::string>()
+            : "mm";
+    surface = load_surface(scan_path, units);
+    if (surface.faces.empty())
+      throw InvalidInput(fmt::format("{}: has no faces; a region is cut out of a scan mesh", scan_path));
+    const TriMesh fitted = load_surface((dir / "fitted.obj").string(), "mm");
+    // The fit's own labels must belong to this scan.
+    const std::string parts_path = (dir / "scan_parts.csv").string();
+    const std::string parts = read_text_file(parts_path, "scan parts");
+    const auto rows = static_cast<int>(std::count(parts.begin(), parts.end(), '\n')) - 1;
+    if (rows != surface.num_vertices())
+      throw InvalidInput(fmt::format("{}: {} rows for a scan of {} vertices ({}): the directory is not this scan's fit",
+                                     parts_path, rows, surface.num_vertices(), scan_path));
+    field = scan_part_field(model, fitted, surface, part);
+    source = scan_path + " fitted in " + o.input;
+  } else {
+    surface = load_surface(o.input, "mm");
+    if (surface.num_vertices() != model.num_vertices() || surface.faces != model.faces)
+      throw InvalidInput(fmt::format("{}: {} vertices, {} faces: not a body of the built-in model at edge {} mm ({} "
+                                     "vertices; as written by body make/fit); for a scan give the directory of its "
+                                     "fit",
+                                     o.input, surface.num_vertices(), surface.num_faces(), o.model_edge,
+                                     model.num_vertices()));
+    field = body_part_field(model, part);
+    source = o.input;
+  }
+  BodyRegionOptions ro;
+  ro.edge_length_mm = o.edge;
+  ro.remesh_iterations = o.remesh;
+  const BodyRegion region = cut_body_region(surface, field, ro);
+  const std::filesystem::path parent = std::filesystem::path(o.output).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  write_mesh(o.output, region.mesh);
+  note(fmt::format("body region: {} of {}: {} vertices, {} faces, {:.0f} cm², rim {:.0f} mm ({} islands removed, {} "
+                   "holes filled, edges {:.1f} mm) -> {}",
+                   o.part, source, region.mesh.num_vertices(), region.mesh.num_faces(), region.area_mm2 / 100.0,
+                   region.boundary_length_mm, region.islands_removed, region.holes_filled, region.edge_length_mm,
+                   o.output));
+  return 0;
+}
+
+struct TransferOptions {
+  std::string garment;
+  std::string from;
+  std::string to;
+  std::string output;
+  std::string units = "mm";
+};
+
+// A body mesh: a file, or a fit's directory (its fitted.obj).
+TriMesh load_body_mesh(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return load_surface((std::filesystem::path(path) / "fitted.obj").string(), "mm");
+  return load_surface(path, "mm");
+}
+
+int run_transfer(const TransferOptions& o) {
+  if (o.output.empty()) throw InvalidInput("body transfer: give the output mesh with -o FILE");
+  const TriMesh garment = load_surface(o.garment, o.units);
+  const TriMesh a = load_body_mesh(o.from), b = load_body_mesh(o.to);
+  if (a.num_vertices() != b.num_vertices() || a.faces != b.faces)
+    throw InvalidInput(fmt::format("body transfer: {} ({} vertices) and {} ({} vertices) are not bodies of the same "
+                                   "model (same vertices and faces); use outputs of body make / body fit with the "
+                                   "same --edge",
+                                   o.from, a.num_vertices(), o.to, b.num_vertices()));
+  const TriMesh moved = transfer_garment(garment, a, b);
+  double largest = 0.0;
+  for (size_t i = 0; i < moved.vertices.size(); ++i)
+    largest = std::max(largest, (moved.vertices[i] - garment.vertices[i]).norm());
+  const std::filesystem::path parent = std::filesystem::path(o.output).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  write_mesh(o.output, moved);
+  note(fmt::format("body transfer: {} vertices of {} rigged to {} (eq. 5.13, 1-ring faces), moved to {}: largest "
+                   "displacement {:.1f} mm -> {}",
+                   moved.num_vertices(), o.garment, o.from, o.to, largest, o.output));
+  return 0;
+}
+
 }  // namespace
 
 void add_body_command(CLI::App& app, Action& action) {
   auto* body = app.add_subcommand(
-      "body", "Bodies for individuals (seed ch. 5): make a body from measurements, fit it to a scan");
+      "body", "Bodies for individuals (seed ch. 5): make a body from measurements, fit it to a scan, cut garment regions, move garments between bodies");
   body->require_subcommand(1);
   auto* make = body->add_subcommand(
       "make",
@@ -191,12 +370,17 @@ void add_body_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"cm", "mm"}));
   std::string poses;
   for (const auto& n : pose_preset_names()) poses += (poses.empty() ? "" : ", ") + n;
-  make->add_option("--pose", o->pose, "Pose: " + poses + ", or a parameter JSON file (docs/body.md)");
+  make->add_option("--pose", o->pose, "Pose: " + poses + ", or a parameter JSON file (docs/bodies.md)");
   make->add_option("-o,--output", o->output, "Output mesh (.obj, .ply, .off, .stl), millimetres");
   make->add_option("--params", o->params,
                    "Also write the parameters, the measurements, the joints and each vertex's part (JSON)");
   make->add_option("--edge", o->edge, "Edge length of the model's mesh (mm, 8-60; 15 is built once and cached)")
       ->check(CLI::Range(8.0, 60.0));
+  make->add_option("--noise", o->noise,
+                   "Move every vertex by uniform noise in ±MM per coordinate, as a stand-in for a scan (the "
+                   "--params are the noiseless body's)")
+      ->check(CLI::Range(0.0, 50.0));
+  make->add_option("--seed", o->seed, "Seed of --noise (default 1)");
   make->add_flag("--json", o->json, "Print the parameters and measurements as JSON");
   make->callback([o, &action] { action = [o] { return run_make(*o); }; });
 
@@ -216,11 +400,45 @@ void add_body_command(CLI::App& app, Action& action) {
                   "input's faces, if any, are ignored)")
       ->check(CLI::IsMember({"best", "scan", "both", "cloud"}));
   fit->add_option("--pose", f->pose, "Initial pose: " + poses + " (default a-pose), or a parameter JSON file");
+  fit->add_option("--keypoints", f->keypoints,
+                  "Initial pose and placement from 3D keypoints triangulated from calibrated views (seed 5.A; the "
+                  "JSON format: docs/formats.md) instead of --pose on the scan's bounding box");
   fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
   fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")
       ->check(CLI::PositiveNumber);
   fit->add_flag("--json", f->json, "Print params.json");
   fit->callback([f, &action] { action = [f] { return run_fit(*f); }; });
+  auto* region = body->add_subcommand(
+      "region", "Cut a garment region out of a fitted scan or a body of the model: a disk-like panel with a smooth "
+                "rim for shortrow / flatten");
+  auto r = std::make_shared<RegionOptions>();
+  std::string part_names;
+  for (int q = 0; q < kNumBodyParts; ++q) part_names += (q ? ", " : "") + body_part_name(static_cast<BodyPart>(q));
+  region->add_option("input", r->input,
+                     "The output directory of body fit (the region is cut out of its scan) or a body mesh written by "
+                     "body make / body fit (fitted.obj)")
+      ->required();
+  region->add_option("--part", r->part, "The region: " + part_names)->required();
+  region->add_option("-o,--output", r->output, "Output mesh (.obj, .ply, .off, .stl), millimetres")->required();
+  region->add_option("--scan", r->scan, "The scan of a fit directory, when not the one its params.json names");
+  region->add_option("--edge", r->edge, "Edge length of the panel (mm; default: that of the cut surface)")
+      ->check(CLI::NonNegativeNumber);
+  region->add_option("--remesh", r->remesh, "Isotropic remeshing iterations of the panel (default 3; 0: none)")
+      ->check(CLI::Range(0, 50));
+  region->add_option("--model-edge", r->model_edge, "Edge length of the body model (mm) the body was made with (body make --edge; default 15)")
+      ->check(CLI::Range(8.0, 60.0));
+  region->callback([r, &action] { action = [r] { return run_region(*r); }; });
+
+  auto* transfer = body->add_subcommand(
+      "transfer", "Move a garment designed on body A to body B of the same model (style transfer, seed eq. 5.13)");
+  auto t = std::make_shared<TransferOptions>();
+  transfer->add_option("garment", t->garment, "The garment mesh (.obj/.ply/.off/.stl), on body A")->required();
+  transfer->add_option("--from", t->from, "Body A: a mesh of body make / body fit, or a fit's directory")->required();
+  transfer->add_option("--to", t->to, "Body B: the same model, another shape or pose")->required();
+  transfer->add_option("-o,--output", t->output, "Output mesh: the garment on body B")->required();
+  transfer->add_option("--units", t->units, "Units of the garment: mm (default), cm, m (the output is in mm)")
+      ->check(CLI::IsMember({"mm", "cm", "m"}));
+  transfer->callback([t, &action] { action = [t] { return run_transfer(*t); }; });
 }
 
 }  // namespace knitforge::cli

@@ -1,7 +1,12 @@
-// End-to-end runs of `knitforge body make` and `knitforge body fit` (seed ch. 5).
+// End-to-end runs of `knitforge body make`, `fit`, `region` and `transfer` (seed ch. 5).
+#include <cmath>
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
+#include "knitforge/evaluate/surface_distance.h"
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/surface_checks.h"
 #include "knitforge/io/mesh_io.h"
 
@@ -61,4 +66,117 @@ TEST_F(Cli, BodyBadInputExitsNonZeroAndWritesNothing) {
   EXPECT_NE(r.code, 0);
   r = run("body make --height -3 -o " + path("x.obj"));
   EXPECT_EQ(r.code, 2);  // a usage error (not a positive number)
+}
+
+TEST_F(Cli, BodyRegionPanelIsKnittedAndAGarmentTransfersToAnotherBody) {
+  // A body, its torso front, and both design routes on it end to end:
+  // knittable, the program valid on the virtual machine.
+  CliRun r = run("body make --height 170 --chest 94 --waist 78 --pose a-pose -o " + path("body.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("body region " + path("body.obj") + " --part torso-front -o " + path("panel.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("body region: torso-front"), std::string::npos) << r.err;
+  const TriMesh panel = read_mesh(path("panel.obj"));
+  const SurfaceReport rep = validate_surface(panel);
+  EXPECT_TRUE(rep.is_disk) << rep.summary();
+  r = run("shortrow " + path("panel.obj") + " --stitch 10x8 --no-evaluate --no-report -o " + path("sr"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(slurp(path("sr/report.json")));
+  EXPECT_TRUE(j["knittable"].get<bool>());
+  EXPECT_EQ(j["machine"]["verdict"], "VALID");
+  EXPECT_EQ(j["machine"]["matches_map"], true);
+  r = run("flatten " + path("panel.obj") + " --stitch 10x8 --no-evaluate -o " + path("fl"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(slurp(path("fl/report.json")));
+  EXPECT_TRUE(j["knittable"].get<bool>());
+  EXPECT_EQ(j["machine"]["verdict"], "VALID");
+  // An unknown part is refused (before the model is built), naming the parts.
+  r = run("body region " + path("body.obj") + " --part cape -o " + path("x.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("torso-front"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.obj")));
+
+  // The style transfer (eq. 5.13) to another body of the model: a garment
+  // 5 mm out from the first body keeps about 5 mm to the second.
+  r = run("body make --height 170 --chest 110 --pose relaxed -o " + path("b.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh a = read_mesh(path("body.obj")), b = read_mesh(path("b.obj"));
+  TriMesh garment = a;
+  const std::vector<Vec3> n = vertex_normals(a);
+  for (size_t i = 0; i < garment.vertices.size(); ++i) garment.vertices[i] += 5.0 * n[i];
+  write_mesh(path("garment.obj"), garment);
+  r = run("body transfer " + path("garment.obj") + " --from " + path("body.obj") + " --to " + path("b.obj") + " -o " +
+          path("out.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const TriMesh out = read_mesh(path("out.obj"));
+  ASSERT_EQ(out.vertices.size(), garment.vertices.size());
+  const std::vector<double> d = distances_to_surface(b, out.vertices);
+  double mean = 0.0;
+  for (double x : d) mean += x / static_cast<double>(d.size());
+  EXPECT_NEAR(mean, 5.0, 0.5);
+  // Bodies of different topologies are refused, and nothing is written.
+  TriMesh c = b;
+  c.faces.pop_back();
+  write_mesh(path("c.obj"), c);
+  r = run("body transfer " + path("garment.obj") + " --from " + path("body.obj") + " --to " + path("c.obj") + " -o " +
+          path("bad.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("same model"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("bad.obj")));
+}
+
+TEST_F(Cli, BodyFitStartsFromKeypointsOfCalibratedViews) {
+  // A body turned to face +x; three cameras see its joints (the joints that
+  // body make --params writes, projected here); the fit starts from them.
+  {
+    std::ofstream pose(path("pose.json"));
+    pose << R"({"model": "knitforge-body", "rotations_deg": {"pelvis": [0, 0, 90]}, "translation_mm": [300, 200, 0]})";
+  }
+  CliRun r = run("body make --height 175 --chest 100 --pose " + path("pose.json") + " -o " + path("scan.obj") +
+                 " --params " + path("made.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto made = nlohmann::json::parse(slurp(path("made.json")));
+  nlohmann::json views;
+  views["units"] = "m";
+  for (int i = 0; i < 3; ++i) {
+    const double a = 0.9 * i - 0.9;
+    const Vec3 centre(300, 200, 950), eye = centre + Vec3(3000 * std::cos(a), 3000 * std::sin(a), 200);
+    const Vec3 z = (centre - eye).normalized(), x = z.cross(Vec3::UnitZ()).normalized(), y = z.cross(x);
+    Mat3 R;
+    R.row(0) = x.transpose();
+    R.row(1) = y.transpose();
+    R.row(2) = z.transpose();
+    const Vec3 t = -R * eye;
+    nlohmann::json c;
+    c["K"] = {{900, 0, 500}, {0, 900, 600}, {0, 0, 1}};
+    for (int k = 0; k < 3; ++k) c["R"].push_back({R(k, 0), R(k, 1), R(k, 2)});
+    c["t"] = {t.x() / 1000, t.y() / 1000, t.z() / 1000};
+    for (const auto& [name, p] : made["joints_mm"].items()) {
+      const Vec3 q = R * Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()) + t;
+      c["keypoints"][name] = {900 * q.x() / q.z() + 500, 900 * q.y() / q.z() + 600};
+    }
+    views["cameras"].push_back(c);
+  }
+  {
+    std::ofstream k(path("views.json"));
+    k << views.dump();
+  }
+  r = run("body fit " + path("scan.obj") + " --keypoints " + path("views.json") +
+          " --objective scan --iterations 25 -o " + path("fitted"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("19 keypoints from 3 views"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("fitted/params.json")));
+  EXPECT_LT(j["fit"]["keypoints"]["initial_joint_rms_mm"].get<double>(), 1.0);
+  EXPECT_LT(j["fit"]["rms_mm"].get<double>(), 1.0);
+  EXPECT_NEAR(j["measurements_mm"]["chest_girth"].get<double>(), 1000.0, 5.0);
+  // A keypoint that is no joint of the model is refused, naming it.
+  views["cameras"][0]["keypoints"]["nose"] = {1, 2};
+  views["cameras"][1]["keypoints"]["nose"] = {3, 4};
+  {
+    std::ofstream k(path("bad.json"));
+    k << views.dump();
+  }
+  r = run("body fit " + path("scan.obj") + " --keypoints " + path("bad.json") + " -o " + path("bad"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("'nose'"), std::string::npos) << r.err;
 }

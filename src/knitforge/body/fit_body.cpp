@@ -294,8 +294,10 @@ BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, c
   runs.push_back(fit_body(model, scan, initial, both));
   size_t best = 0;
   double best_rms = 1e300;
+  std::vector<double> run_rms;
   for (size_t k = 0; k < runs.size(); ++k) {
     const double r = symmetric_rms_mm(model, scan, runs[k].params, options);
+    run_rms.push_back(r);
     if (r < best_rms) {
       best_rms = r;
       best = k;
@@ -306,6 +308,7 @@ BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, c
   out.rms_mm = best_rms;
   out.iterations = runs[0].iterations + runs[1].iterations + runs[2].iterations;
   out.chosen_run = static_cast<int>(best);
+  out.run_rms_mm = run_rms;
   return out;
 }
 

@@ -69,6 +69,8 @@ struct BodyFitResult {
   bool converged = false;     ///< the relative tolerance was reached
   std::vector<double> rms_history_mm;  ///< after each accepted iteration
   int chosen_run = 0;         ///< fit_body_multistart(): which run won (0, 1, 2)
+  /// fit_body_multistart(): the symmetric rms (mm) of each run, in run order.
+  std::vector<double> run_rms_mm;
 };
 
 /// Fits `model` to `scan`, starting from `initial`. For TemplateToScan the
