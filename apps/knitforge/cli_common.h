@@ -48,6 +48,7 @@ void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
 void add_predict_command(CLI::App& app, Action& action);
 void add_body_command(CLI::App& app, Action& action);
+void add_cloth_command(CLI::App& app, Action& action);
 
 /// A usage error found after parsing (a missing, empty or malformed
 /// argument): the program exits 2, like CLI11's own parse errors.
