@@ -48,8 +48,7 @@ LoadedScene load_scene(const ClothScene& s) {
     const SleeveMesh sleeve = arm_sleeve_mesh(s.arm);
     L.garment = sleeve.mesh;
     L.course = sleeve.course_directions;
-    L.attached = sleeve.shoulder_ring;
-    L.attached.insert(L.attached.end(), sleeve.cuff_ring.begin(), sleeve.cuff_ring.end());
+    L.attached = sleeve.attached;
     L.body = arm_body_mesh(s.arm, 0.0);
     for (int f = 0; f <= s.frames; ++f) {
       L.elbow_angle_deg.push_back(arm_elbow_angle_deg(s.arm, f, s.frames));
@@ -106,8 +105,7 @@ LoadedScene load_scene(const ClothScene& s) {
   std::sort(L.attached.begin(), L.attached.end());
   L.attached.erase(std::unique(L.attached.begin(), L.attached.end()), L.attached.end());
   for (int v : L.attached) {
-    if (std::binary_search(s.pinned.begin(), s.pinned.end(), v) ||
-        std::find(s.pinned.begin(), s.pinned.end(), v) != s.pinned.end()) {
+    if (std::find(s.pinned.begin(), s.pinned.end(), v) != s.pinned.end()) {
       throw InvalidInput(fmt::format("{}: vertex {} is both pinned and attached; choose one", s.where, v));
     }
   }
@@ -128,11 +126,6 @@ json rounded(const std::vector<double>& v) {
   json out = json::array();
   for (double x : v) out.push_back(std::round(x / q) * q);
   return out;
-}
-
-json timings_json(const NewtonTimings& t) {
-  return {{"evaluate_s", t.evaluate}, {"factor_s", t.factor}, {"max_step_s", t.max_step},
-          {"line_search_s", t.line_search}};
 }
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -264,7 +257,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
                      {"total", f.elastic_energy_uj + f.kinetic_energy_uj + f.gravity_energy_uj}}},
                    {"max_stress_kpa", smax},
                    {"max_sliding_mm", lmax},
-                   {"seconds", timings_json(f.seconds)}};
+                   {"seconds", newton_timings_json(f.seconds)}};
         if (!L.elbow_angle_deg.empty()) fj["elbow_angle_deg"] = L.elbow_angle_deg[f.frame];
         frames.push_back(fj);
         fields.push_back({{"frame", f.frame}, {"stress_kpa", rounded(f.stress_kpa)}, {"sliding_mm", rounded(f.sliding_mm)}});
@@ -330,7 +323,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"sliding_measure",
                             "per vertex: distance on the body between its contact point and the point where it first "
                             "touched (mm; touching = within sliding_distance_mm)"}};
-      summary["seconds"] = {{"simulation", sim_seconds}, {"newton", timings_json(r.seconds)},
+      summary["seconds"] = {{"simulation", sim_seconds}, {"newton", newton_timings_json(r.seconds)},
                             {"measures", r.measure_seconds}};
       summary["outputs"] = {{"animation", "animation.glb (garment and body, morph targets, LINEAR)"},
                             {"sequence", "frames/NNNN_garment.obj, frames/NNNN_body.obj"},

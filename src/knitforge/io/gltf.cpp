@@ -181,6 +181,18 @@ std::string glb_json_chunk(const std::string& path, const nlohmann::json& scene_
   return json;
 }
 
+/// The GLB header, the JSON chunk and the BIN chunk's header.
+void write_glb_header(LittleEndianSink& out, uint64_t total, const std::string& json, uint64_t bin_length) {
+  out.u32(kMagic);
+  out.u32(2);
+  out.u32(static_cast<uint32_t>(total));
+  out.u32(static_cast<uint32_t>(json.size()));
+  out.u32(kChunkJson);
+  out.bytes(json.data(), json.size());
+  out.u32(static_cast<uint32_t>(bin_length));
+  out.u32(kChunkBin);
+}
+
 }  // namespace
 
 uint8_t srgb_to_linear_byte(uint8_t c) {
@@ -298,14 +310,7 @@ void write_glb(const std::string& path, std::span<const RenderMesh> meshes) {
       path,
       [&](std::ostream& os) {
         LittleEndianSink out(os, path);
-        out.u32(kMagic);
-        out.u32(2);
-        out.u32(static_cast<uint32_t>(total));
-        out.u32(static_cast<uint32_t>(json.size()));
-        out.u32(kChunkJson);
-        out.bytes(json.data(), json.size());
-        out.u32(static_cast<uint32_t>(bin_length));
-        out.u32(kChunkBin);
+        write_glb_header(out, total, json, bin_length);
         for (const Prepared& p : prep) {
           const RenderMesh& pm = p.m();
           out.vec3s(pm.mesh.vertices, [](const Vec3& v) { return v; });
@@ -831,14 +836,7 @@ void write_animation_glb(const std::string& path, std::span<const AnimatedMesh> 
       path,
       [&](std::ostream& os) {
         LittleEndianSink out(os, path);
-        out.u32(kMagic);
-        out.u32(2);
-        out.u32(static_cast<uint32_t>(total));
-        out.u32(static_cast<uint32_t>(json.size()));
-        out.u32(kChunkJson);
-        out.bytes(json.data(), json.size());
-        out.u32(static_cast<uint32_t>(bin_length));
-        out.u32(kChunkBin);
+        write_glb_header(out, total, json, bin_length);
         for (size_t k = 0; k < nt; ++k) {
           const float t = static_cast<float>(times_s[k]);
           out.f32(t);

@@ -152,6 +152,9 @@ SleeveMesh arm_sleeve_mesh(const ArmMotionParams& p) {
     if (q.z() == 0.0) out.shoulder_ring.push_back(static_cast<int>(v));
     if (q.z() == length) out.cuff_ring.push_back(static_cast<int>(v));
   }
+  out.attached = out.shoulder_ring;
+  out.attached.insert(out.attached.end(), out.cuff_ring.begin(), out.cuff_ring.end());
+  std::sort(out.attached.begin(), out.attached.end());
   out.course_directions.reserve(out.mesh.faces.size());
   for (const auto& f : out.mesh.faces) {
     const Vec3 c = (out.mesh.vertices[f[0]] + out.mesh.vertices[f[1]] + out.mesh.vertices[f[2]]) / 3.0;

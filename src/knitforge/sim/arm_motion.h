@@ -38,8 +38,10 @@ struct ArmMotionParams {
   double max_angle_deg = 90.0;
   /// Edge length of the arm's capsule meshes.
   double body_edge_mm = 12.0;
-  /// Edge length of the sleeve (the garment's resolution).
-  double sleeve_edge_mm = 14.0;
+  /// Edge length of the sleeve (the garment's resolution); at most
+  /// 2π (upper_radius + clearance) / 24 (open_tube() puts at least 24
+  /// vertices round a ring).
+  double sleeve_edge_mm = 13.0;
   double clearance_mm = 5.0;
   double sleeve_start_mm = 20.0;
   double wrist_margin_mm = 20.0;
@@ -67,6 +69,8 @@ struct SleeveMesh {
   std::vector<Vec3> course_directions;
   /// The first ring (at the shoulder end) and the last (the cuff), vertex indices.
   std::vector<int> shoulder_ring, cuff_ring;
+  /// Both rings, sorted: the vertices attached to the arm.
+  std::vector<int> attached;
 };
 
 /// \throw InvalidInput as arm_body_mesh(), and for a sleeve that does not

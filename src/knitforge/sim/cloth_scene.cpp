@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/core.h>
 
@@ -266,17 +264,7 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
 }
 
 ClothScene read_cloth_scene(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IOError(fmt::format("{}: cannot open the scene file", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  json j;
-  try {
-    j = json::parse(ss.str());
-  } catch (const json::parse_error& e) {
-    throw IOError(fmt::format("{}: not valid JSON ({})", path, e.what()));
-  }
-  return cloth_scene_from_json(j, path, fs::path(path).parent_path().string());
+  return cloth_scene_from_json(read_json_file(path, "scene file"), path, fs::path(path).parent_path().string());
 }
 
 ClothScene builtin_cloth_scene(const std::string& name) {

@@ -18,7 +18,7 @@
 ///    "friction": 0.5, "gravity_mm_s2": [0, 0, -9810],
 ///    "pin": [vertex, ...], "attach": [vertex, ...], "attach_within_mm": 0,
 ///    "contact_distance_mm": 0.5, "sliding_distance_mm": 1.0,
-///    "newton": {"max_iterations": 50, "force_tolerance_mn": 0.001}}
+///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01}}
 ///
 /// or a built-in scene: {"builtin": "sleeve", "arm": {ArmMotionParams
 /// fields}, ...run fields} (arm_motion.h), which needs no file.
@@ -72,8 +72,8 @@ struct ClothScene {
   Vec3 gravity_mm_s2{0.0, 0.0, -9810.0};
   double contact_distance_mm = 0.5;
   double sliding_distance_mm = 1.0;
-  int max_newton_iterations = 50;
-  double force_tolerance_mn = 1e-3;
+  int max_newton_iterations = 20;
+  double force_tolerance_mn = 1e-2;
 };
 
 /// The scene of a JSON value; `where` names it in messages, relative paths

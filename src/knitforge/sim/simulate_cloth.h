@@ -49,7 +49,7 @@ struct ClothOptions {
   int substeps = 2;
   Vec3 gravity_mm_s2{0.0, 0.0, -9810.0};
   ContactParams contact;
-  NewtonOptions newton{50, 1e-3};
+  NewtonOptions newton{20, 1e-2};
   PsdProjection projection = PsdProjection::Clamp;
   /// A vertex touches the body (for the sliding measure) within this distance (mm).
   double sliding_distance_mm = 1.0;
