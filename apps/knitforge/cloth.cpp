@@ -313,8 +313,10 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"newton_iterations", r.newton_iterations},
                            {"steps", r.steps},
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
-                           {"penetration", "none: every free vertex stays at a positive distance (barrier + "
-                                           "collision-free steps); min_distance_mm is the closest over all frames"},
+                           {"penetration",
+                            "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
+                            "all frames (> 0 by the barrier and collision-free steps); KNOWN BUG: with a moving body, "
+                            "vertices can still pass through the body's surface (docs/sim.md)"},
                            {"max_stress_kpa", stress_top},
                            {"max_sliding_mm", sliding_top},
                            {"stress_measure",
