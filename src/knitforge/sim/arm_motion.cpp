@@ -103,6 +103,17 @@ double arm_elbow_angle_deg(const ArmMotionParams& p, int frame, int frames) {
   return p.max_angle_deg * s * s * (3 - 2 * s);
 }
 
+double arm_signed_distance(const ArmMotionParams& p, double angle_deg, const Vec3& x) {
+  const double a = angle_deg * kPi / 180.0;
+  const Vec3 elbow(p.upper_length_mm, 0, 0);
+  const Vec3 wrist = elbow + p.forearm_length_mm * Vec3(std::cos(a), 0, std::sin(a));
+  auto to_segment = [&](const Vec3& s0, const Vec3& s1) {
+    const double t = std::clamp((x - s0).dot(s1 - s0) / (s1 - s0).squaredNorm(), 0.0, 1.0);
+    return (x - (s0 + t * (s1 - s0))).norm();
+  };
+  return std::min(to_segment(Vec3::Zero(), elbow) - p.upper_radius_mm, to_segment(elbow, wrist) - p.forearm_radius_mm);
+}
+
 int arm_upper_vertex_count(const ArmMotionParams& p) {
   check_params(p);
   return capsule(p.upper_length_mm, p.upper_radius_mm, p.body_edge_mm).num_vertices();

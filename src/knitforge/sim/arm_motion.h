@@ -59,6 +59,12 @@ double arm_elbow_angle_deg(const ArmMotionParams& p, int frame, int frames);
 ///        thicker than the upper arm, edges larger than a radius).
 TriMesh arm_body_mesh(const ArmMotionParams& p, double angle_deg);
 
+/// Signed distance (mm) of x to the true arm at elbow angle `angle_deg`:
+/// the union of the two exact capsules (not their meshes), negative inside.
+/// The meshes are inscribed, so a point outside them is at most their chord
+/// sag (below 1 mm for edges of a third of the radius) inside.
+double arm_signed_distance(const ArmMotionParams& p, double angle_deg, const Vec3& x);
+
 /// Vertices of the upper arm's capsule (the first ones of arm_body_mesh()).
 int arm_upper_vertex_count(const ArmMotionParams& p);
 
