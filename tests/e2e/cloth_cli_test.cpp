@@ -44,6 +44,8 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   for (size_t f = 1; f < 4; ++f) {
     EXPECT_GT(c["frames"][f]["newton_iterations"].get<int>(), 0);
     EXPECT_GT(c["frames"][f]["min_distance_mm"].get<double>(), 0.0);
+    // Signed, to the true capsules: inside by at most the meshes' chord sag.
+    EXPECT_GT(c["frames"][f]["min_arm_clearance_mm"].get<double>(), -0.8);
     EXPECT_TRUE(c["frames"][f]["energy_uj"]["elastic"].is_number());
   }
   ASSERT_EQ(c["fields"].size(), 4u);
@@ -51,6 +53,8 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   EXPECT_EQ(c["fields"][2]["sliding_mm"].size(), static_cast<size_t>(nv));
   EXPECT_EQ(c["max_stress_kpa_per_triangle"].size(), static_cast<size_t>(nt));
   EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+  EXPECT_GT(c["result"]["min_arm_clearance_mm"].get<double>(), -0.8);
+  EXPECT_LT(c["result"]["min_arm_clearance_mm"].get<double>(), 5.0);  // the 5 mm clearance at the start
   // The glTF: a valid container, two meshes with frames - 1 morph targets and the right counts.
   const std::string glb = slurp(path("out/animation.glb"));
   ASSERT_GT(glb.size(), 28u);
