@@ -6,15 +6,19 @@
 // Sizes: square sheets of N x N stitches of 3.5 x 2.8 mm (N = 32, 64, 128:
 // about 1k, 4k and 16k stitches).
 
+#include <algorithm>
+
 #include <benchmark/benchmark.h>
 
 #include "knitforge/convert/map_to_stitch_mesh.h"
 #include "knitforge/convert/relax_stitch_mesh.h"
 #include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/geometry/shapes.h"
+#include "knitforge/sim/arm_motion.h"
 #include "knitforge/sim/bending_energy.h"
 #include "knitforge/sim/membrane_energy.h"
 #include "knitforge/sim/predict_shape.h"
+#include "knitforge/sim/simulate_cloth.h"
 #include "knitforge/sim/step_simulation.h"
 
 using namespace knitforge;
@@ -115,6 +119,35 @@ void BM_PredictCup(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PredictCup)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The built-in `cloth` scene (a capsule arm bending 0 -> 90 degrees over 30
+// frames at 30 Hz, 2 substeps, inside a sleeve attached at shoulder and
+// cuff): the first `frames` frames with the sleeve's edge length (mm) from
+// the argument (x 0.1). 130 = the default (about 2.5k triangles); 42 gives
+// about 20k triangles, the size. Counter: seconds per frame.
+void BM_ClothSleeve(benchmark::State& state) {
+  ArmMotionParams p;
+  p.sleeve_edge_mm = 0.1 * static_cast<double>(state.range(0));
+  const int frames = static_cast<int>(state.range(1)), motion_frames = 30;
+  const SleeveMesh sleeve = arm_sleeve_mesh(p);
+  SimModel model = build_sim_model(sleeve.mesh, sleeve.course_directions);
+  const std::vector<int>& attached = sleeve.attached;
+  model.pinned = attached;
+  std::vector<std::vector<Vec3>> poses;
+  for (int f = 0; f <= frames; ++f) poses.push_back(arm_body_mesh(p, arm_elbow_angle_deg(p, f, motion_frames)).vertices);
+  ClothOptions o;
+  o.frames = frames;
+  for (auto _ : state) {
+    const ClothResult r = simulate_cloth(model, arm_body_mesh(p, 0.0), poses, attached, o);
+    state.counters["newton_per_frame"] = static_cast<double>(r.newton_iterations) / frames;
+    state.counters["factor_s_per_frame"] = r.seconds.factor / frames;
+    state.counters["evaluate_s_per_frame"] = (r.seconds.evaluate + r.seconds.line_search) / frames;
+    state.counters["ccd_s_per_frame"] = r.seconds.max_step / frames;
+  }
+  state.counters["triangles"] = model.num_elements();
+  state.counters["vertices"] = model.num_vertices();
+}
+BENCHMARK(BM_ClothSleeve)->Args({130, 30})->Args({42, 3})->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -226,6 +226,11 @@ KnitParams parse_stitch_size(const std::string& text) {
   return p;
 }
 
+nlohmann::json newton_timings_json(const NewtonTimings& t) {
+  return {{"evaluate_s", t.evaluate}, {"factor_s", t.factor}, {"max_step_s", t.max_step},
+          {"line_search_s", t.line_search}};
+}
+
 double unit_scale(const std::string& units) {
   if (units == "mm") return 1.0;
   if (units == "cm") return 10.0;

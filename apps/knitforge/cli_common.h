@@ -18,6 +18,7 @@
 #include "knitforge/geometry/cut_to_disk.h"
 #include "knitforge/geometry/geodesic_source.h"
 #include "knitforge/geometry/tri_mesh.h"
+#include "knitforge/sim/newton_solve.h"
 #include "knitforge/util/errors.h"
 #include "knitforge/util/work_limit.h"
 
@@ -48,6 +49,7 @@ void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
 void add_predict_command(CLI::App& app, Action& action);
 void add_body_command(CLI::App& app, Action& action);
+void add_cloth_command(CLI::App& app, Action& action);
 
 /// A usage error found after parsing (a missing, empty or malformed
 /// argument): the program exits 2, like CLI11's own parse errors.
@@ -89,6 +91,10 @@ CLI::Option* add_max_stitches_option(CLI::App& cmd, double& value);
 /// area and size, and says how to override).
 void check_surface_stitches(const TriMesh& surface, const std::string& description, const KnitParams& params,
                             double max_stitches, double bytes_per_stitch);
+
+/// Where a simulator solve's time went, as report JSON:
+/// {"evaluate_s", "factor_s", "max_step_s", "line_search_s"}.
+nlohmann::json newton_timings_json(const NewtonTimings& t);
 
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.

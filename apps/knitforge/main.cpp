@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   cli::add_machines_command(app, action);
   cli::add_predict_command(app, action);
   cli::add_body_command(app, action);
+  cli::add_cloth_command(app, action);
 
   try {
     app.parse(argc, argv);

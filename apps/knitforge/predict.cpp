@@ -27,11 +27,6 @@ namespace {
 /// few minutes at the measured rate (docs/sim.md).
 constexpr int kMaxStitches = 200000;
 
-nlohmann::json timings_json(const NewtonTimings& t) {
-  return {{"evaluate_s", t.evaluate}, {"factor_s", t.factor}, {"max_step_s", t.max_step},
-          {"line_search_s", t.line_search}};
-}
-
 }  // namespace
 
 void add_predict_command(CLI::App& app, Action& action) {
@@ -157,7 +152,7 @@ void add_predict_command(CLI::App& app, Action& action) {
                     {"contacts", r.solve.contacts},
                     {"min_distance_to_support_mm",
                      std::isfinite(r.solve.min_distance_mm) ? nlohmann::json(r.solve.min_distance_mm) : nullptr},
-                    {"seconds", timings_json(r.solve.seconds)}};
+                    {"seconds", newton_timings_json(r.solve.seconds)}};
       j["stress_kpa"] = scalar_stats_json(scalar_stats(r.stitch_stress_kpa));
       j["stress_measure"] = "largest principal Cauchy membrane stress per stitch / thickness (kPa, 0 if compressed)";
       j["course_strain"] = scalar_stats_json(scalar_stats(r.stitch_course_strain));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
@@ -379,6 +380,85 @@ TEST(YarnGlb, UncappedTubesAndErrors) {
   test::invalid_input([&] { write_yarn_glb(dir.path("w.glb"), y, KnitParams{}, wrong); });
   EXPECT_EQ(dir.num_files(), 1u);  // only u.glb
   test::io_error([&] { write_yarn_glb(dir.path("no/such/dir/x.glb"), y, KnitParams{}); });
+}
+
+
+TEST(AnimationGlb, MorphTargetsReproduceEveryFrame) {
+  TempDir dir;
+  const std::vector<double> times = {0.0, 0.5, 1.0};
+  AnimatedMesh a;
+  a.name = "garment";
+  a.faces = {{0, 1, 2}, {0, 2, 3}};
+  const std::vector<Vec3> base = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 1}};
+  for (int k = 0; k < 3; ++k) {
+    std::vector<Vec3> f = base;
+    for (size_t v = 0; v < f.size(); ++v) f[v] += Vec3(0.5 * k, -1.25 * k * v, 2.0 * k);
+    a.frames.push_back(f);
+  }
+  AnimatedMesh b;
+  b.name = "body";
+  b.faces = {{0, 1, 2}};
+  b.frames = {{{0, 0, -1}, {1, 0, -1}, {0, 1, -1}}, {{0, 0, -2}, {1, 0, -2}, {0, 1, -2}},
+              {{0, 0, -3}, {1, 0, -3}, {0, 1, -3}}};
+  write_animation_glb(dir.path("a.glb"), std::vector<AnimatedMesh>{a, b}, times);
+  const Glb g = parse_glb(dir.read("a.glb"));
+  ASSERT_EQ(g.doc["meshes"].size(), 2u);
+  ASSERT_EQ(g.doc["animations"].size(), 1u);
+  const json& anim = g.doc["animations"][0];
+  ASSERT_EQ(anim["channels"].size(), 2u);
+  for (size_t m = 0; m < 2; ++m) {
+    const AnimatedMesh& src = m == 0 ? a : b;
+    const json& prim = g.doc["meshes"][m]["primitives"][0];
+    ASSERT_EQ(prim["targets"].size(), 2u);  // frames - 1
+    EXPECT_EQ(g.doc["meshes"][m]["weights"].size(), 2u);
+    const int pos = prim["attributes"]["POSITION"].get<int>();
+    EXPECT_EQ(g.doc["accessors"][pos]["count"].get<size_t>(), src.frames[0].size());
+    const int idx = prim["indices"].get<int>();
+    EXPECT_EQ(g.doc["accessors"][idx]["count"].get<size_t>(), 3 * src.faces.size());
+    // Frame k = base + target k-1 (the displacements), within float32.
+    for (int k = 1; k < 3; ++k) {
+      const int t = prim["targets"][k - 1]["POSITION"].get<int>();
+      const size_t off = accessor_offset(g, t), base_off = accessor_offset(g, pos);
+      const json& acc = g.doc["accessors"][t];
+      for (size_t v = 0; v < src.frames[0].size(); ++v) {
+        for (size_t c = 0; c < 3; ++c) {
+          const float d = f32(g.bin, off + 12 * v + 4 * c), p0 = f32(g.bin, base_off + 12 * v + 4 * c);
+          EXPECT_NEAR(p0 + d, src.frames[k][v][c], 1e-5);
+          EXPECT_GE(d, acc["min"][c].get<float>());
+          EXPECT_LE(d, acc["max"][c].get<float>());
+        }
+      }
+    }
+    // The sampler: the frame times in, one-hot weights out.
+    const json& ch = anim["channels"][m];
+    EXPECT_EQ(ch["target"]["node"].get<size_t>(), m);
+    EXPECT_EQ(ch["target"]["path"], "weights");
+    const json& sampler = anim["samplers"][ch["sampler"].get<int>()];
+    EXPECT_EQ(sampler["interpolation"], "LINEAR");
+    const int in = sampler["input"].get<int>(), out = sampler["output"].get<int>();
+    ASSERT_EQ(g.doc["accessors"][in]["count"].get<size_t>(), 3u);
+    ASSERT_EQ(g.doc["accessors"][out]["count"].get<size_t>(), 6u);  // frames x targets
+    const size_t in_off = accessor_offset(g, in), out_off = accessor_offset(g, out);
+    for (size_t k = 0; k < 3; ++k) {
+      EXPECT_FLOAT_EQ(f32(g.bin, in_off + 4 * k), static_cast<float>(times[k]));
+      for (size_t w = 0; w < 2; ++w) EXPECT_EQ(f32(g.bin, out_off + 4 * (2 * k + w)), k >= 1 && w == k - 1 ? 1.0f : 0.0f);
+    }
+  }
+}
+
+TEST(AnimationGlb, RefusesMismatchedFrames) {
+  TempDir dir;
+  AnimatedMesh a;
+  a.faces = {{0, 1, 2}};
+  a.frames = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {1, 0, 0}}};
+  const std::vector<double> times = {0.0, 1.0};
+  EXPECT_THROW(write_animation_glb(dir.path("a.glb"), std::vector<AnimatedMesh>{a}, times), InvalidInput);
+  a.frames[1].push_back({0, 1, 0});
+  const std::vector<double> bad_times = {1.0, 0.5};
+  EXPECT_THROW(write_animation_glb(dir.path("a.glb"), std::vector<AnimatedMesh>{a}, bad_times), InvalidInput);
+  a.faces = {{0, 1, 3}};
+  EXPECT_THROW(write_animation_glb(dir.path("a.glb"), std::vector<AnimatedMesh>{a}, times), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(dir.path("a.glb")));
 }
 
 }  // namespace

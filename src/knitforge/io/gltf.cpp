@@ -78,6 +78,11 @@ class LittleEndianSink {
     }
     put4(&v);
   }
+  void f32(float f) {
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    u32(v);
+  }
   void bytes(const void* p, size_t n) {
     const char* c = static_cast<const char*>(p);
     while (n > 0) {
@@ -154,8 +159,9 @@ double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 std::string glb_json_chunk(const std::string& path, const nlohmann::json& scene_nodes, const nlohmann::json& nodes,
                            const nlohmann::json& meshes, const nlohmann::json& materials,
                            const nlohmann::json& accessors, const nlohmann::json& views, uint64_t bin_length,
-                           std::string_view what, std::string_view advice, uint64_t& total) {
-  const nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
+                           std::string_view what, std::string_view advice, uint64_t& total,
+                           const nlohmann::json* animations = nullptr) {
+  nlohmann::json doc = {{"asset", {{"version", "2.0"}, {"generator", "knitforge"}}},
                               {"scene", 0},
                               {"scenes", {{{"nodes", scene_nodes}}}},
                               {"nodes", nodes},
@@ -164,6 +170,7 @@ std::string glb_json_chunk(const std::string& path, const nlohmann::json& scene_
                               {"accessors", accessors},
                               {"bufferViews", views},
                               {"buffers", {{{"byteLength", bin_length}}}}};
+  if (animations) doc["animations"] = *animations;
   std::string json = doc.dump();
   while (json.size() % 4 != 0) json.push_back(' ');
   total = 12 + 8 + json.size() + 8 + bin_length;
@@ -172,6 +179,18 @@ std::string glb_json_chunk(const std::string& path, const nlohmann::json& scene_
                                    what, total, advice));
   }
   return json;
+}
+
+/// The GLB header, the JSON chunk and the BIN chunk's header.
+void write_glb_header(LittleEndianSink& out, uint64_t total, const std::string& json, uint64_t bin_length) {
+  out.u32(kMagic);
+  out.u32(2);
+  out.u32(static_cast<uint32_t>(total));
+  out.u32(static_cast<uint32_t>(json.size()));
+  out.u32(kChunkJson);
+  out.bytes(json.data(), json.size());
+  out.u32(static_cast<uint32_t>(bin_length));
+  out.u32(kChunkBin);
 }
 
 }  // namespace
@@ -291,14 +310,7 @@ void write_glb(const std::string& path, std::span<const RenderMesh> meshes) {
       path,
       [&](std::ostream& os) {
         LittleEndianSink out(os, path);
-        out.u32(kMagic);
-        out.u32(2);
-        out.u32(static_cast<uint32_t>(total));
-        out.u32(static_cast<uint32_t>(json.size()));
-        out.u32(kChunkJson);
-        out.bytes(json.data(), json.size());
-        out.u32(static_cast<uint32_t>(bin_length));
-        out.u32(kChunkBin);
+        write_glb_header(out, total, json, bin_length);
         for (const Prepared& p : prep) {
           const RenderMesh& pm = p.m();
           out.vec3s(pm.mesh.vertices, [](const Vec3& v) { return v; });
@@ -680,6 +692,177 @@ YarnGlbSummary write_yarn_glb(const std::string& path, const YarnModel& yarn, co
       true);
   summary.meshes = layouts.size();
   return summary;
+}
+
+}  // namespace knitforge
+
+namespace knitforge {
+
+void write_animation_glb(const std::string& path, std::span<const AnimatedMesh> meshes,
+                         std::span<const double> times_s) {
+  const size_t nt = times_s.size();
+  if (nt == 0) throw InvalidInput(fmt::format("{}: an animation needs at least one frame time", path));
+  for (size_t k = 0; k < nt; ++k) {
+    if (!std::isfinite(times_s[k]) || (k > 0 && !(times_s[k] > times_s[k - 1]))) {
+      throw InvalidInput(fmt::format("{}: frame times must be finite and increasing (frame {}: {} s)", path, k,
+                                     times_s[k]));
+    }
+  }
+  if (meshes.empty()) throw InvalidInput(fmt::format("{}: no mesh to animate", path));
+  struct Layout {
+    size_t nv = 0;
+    std::vector<std::array<float, 3>> lo, hi;  // per frame: frame 0 absolute, then displacements
+  };
+  std::vector<Layout> lay(meshes.size());
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const AnimatedMesh& m = meshes[i];
+    if (m.frames.size() != nt) {
+      throw InvalidInput(fmt::format("{}: mesh {} has {} frames for {} frame times", path, i, m.frames.size(), nt));
+    }
+    if (m.faces.empty()) throw InvalidInput(fmt::format("{}: mesh {} has no triangle", path, i));
+    const size_t nv = m.frames[0].size();
+    if (nv == 0 || nv > std::numeric_limits<uint32_t>::max() / 12) {
+      throw InvalidInput(fmt::format("{}: mesh {} has {} vertices", path, i, nv));
+    }
+    for (const auto& f : m.faces) {
+      for (int v : f) {
+        if (v < 0 || static_cast<size_t>(v) >= nv) {
+          throw InvalidInput(fmt::format("{}: mesh {}: face index {} out of range (0..{})", path, i, v, nv - 1));
+        }
+      }
+    }
+    lay[i].nv = nv;
+    for (size_t k = 0; k < nt; ++k) {
+      if (m.frames[k].size() != nv) {
+        throw InvalidInput(fmt::format("{}: mesh {} frame {} has {} vertices, frame 0 {}", path, i, k,
+                                       m.frames[k].size(), nv));
+      }
+      std::array<float, 3> lo, hi;
+      lo.fill(std::numeric_limits<float>::infinity());
+      hi.fill(-std::numeric_limits<float>::infinity());
+      for (size_t v = 0; v < nv; ++v) {
+        const Vec3 p = k == 0 ? m.frames[0][v] : Vec3(m.frames[k][v] - m.frames[0][v]);
+        for (int c = 0; c < 3; ++c) {
+          // The value written, so that min/max bound the float32 data exactly.
+          const float f = k == 0 ? static_cast<float>(p[c])
+                                 : static_cast<float>(m.frames[k][v][c]) - static_cast<float>(m.frames[0][v][c]);
+          if (!std::isfinite(f))
+            throw InvalidInput(fmt::format("{}: mesh {} frame {}: a coordinate overflows float32", path, i, k));
+          lo[static_cast<size_t>(c)] = std::min(lo[static_cast<size_t>(c)], f);
+          hi[static_cast<size_t>(c)] = std::max(hi[static_cast<size_t>(c)], f);
+        }
+      }
+      lay[i].lo.push_back(lo);
+      lay[i].hi.push_back(hi);
+    }
+  }
+
+  uint64_t off = 0;
+  nlohmann::json accessors = nlohmann::json::array(), views = nlohmann::json::array(),
+                 gmeshes = nlohmann::json::array(), nodes = nlohmann::json::array(),
+                 materials = nlohmann::json::array(), scene_nodes = nlohmann::json::array(),
+                 samplers = nlohmann::json::array(), channels = nlohmann::json::array();
+  auto add_view = [&](uint64_t length, int target) {
+    nlohmann::json v = {{"buffer", 0}, {"byteOffset", off}, {"byteLength", length}};
+    if (target) v["target"] = target;
+    views.push_back(v);
+    off += length;
+    return views.size() - 1;
+  };
+  // The key times, shared by every sampler.
+  const size_t time_view = add_view(4 * static_cast<uint64_t>(nt), 0);
+  const size_t time_accessor = accessors.size();
+  accessors.push_back({{"bufferView", time_view},
+                       {"componentType", kFloat},
+                       {"count", nt},
+                       {"type", "SCALAR"},
+                       {"min", {static_cast<float>(times_s[0])}},
+                       {"max", {static_cast<float>(times_s[nt - 1])}}});
+  const size_t targets = nt - 1;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const AnimatedMesh& m = meshes[i];
+    const Layout& L = lay[i];
+    auto position_accessor = [&](size_t k) {
+      const size_t view = add_view(12 * static_cast<uint64_t>(L.nv), kArrayBuffer);
+      accessors.push_back({{"bufferView", view},
+                           {"componentType", kFloat},
+                           {"count", L.nv},
+                           {"type", "VEC3"},
+                           {"min", {L.lo[k][0], L.lo[k][1], L.lo[k][2]}},
+                           {"max", {L.hi[k][0], L.hi[k][1], L.hi[k][2]}}});
+      return accessors.size() - 1;
+    };
+    nlohmann::json primitive = {{"attributes", {{"POSITION", position_accessor(0)}}}, {"material", i}, {"mode", 4}};
+    nlohmann::json tgts = nlohmann::json::array();
+    for (size_t k = 1; k < nt; ++k) tgts.push_back({{"POSITION", position_accessor(k)}});
+    const size_t idx_view = add_view(12 * static_cast<uint64_t>(m.faces.size()), kElementArrayBuffer);
+    primitive["indices"] = accessors.size();
+    accessors.push_back(
+        {{"bufferView", idx_view}, {"componentType", kUnsignedInt}, {"count", 3 * m.faces.size()}, {"type", "SCALAR"}});
+    const std::string name = m.name.empty() ? fmt::format("mesh {}", i) : m.name;
+    nlohmann::json mesh = {{"name", name}};
+    if (targets > 0) {
+      primitive["targets"] = tgts;
+      mesh["weights"] = std::vector<double>(targets, 0.0);
+    }
+    mesh["primitives"] = nlohmann::json::array({primitive});
+    gmeshes.push_back(mesh);
+    materials.push_back({{"name", name},
+                         {"doubleSided", true},
+                         {"pbrMetallicRoughness",
+                          {{"baseColorFactor",
+                            {srgb_to_linear(m.colour[0] / 255.0), srgb_to_linear(m.colour[1] / 255.0),
+                             srgb_to_linear(m.colour[2] / 255.0), 1.0}},
+                           {"metallicFactor", 0.0},
+                           {"roughnessFactor", 0.8}}}});
+    nodes.push_back({{"name", name}, {"mesh", i}});
+    scene_nodes.push_back(i);
+    if (targets > 0) {
+      const size_t w_view = add_view(4 * static_cast<uint64_t>(nt) * targets, 0);
+      accessors.push_back(
+          {{"bufferView", w_view}, {"componentType", kFloat}, {"count", nt * targets}, {"type", "SCALAR"}});
+      channels.push_back({{"sampler", samplers.size()}, {"target", {{"node", i}, {"path", "weights"}}}});
+      samplers.push_back({{"input", time_accessor}, {"output", accessors.size() - 1}, {"interpolation", "LINEAR"}});
+    }
+  }
+  nlohmann::json animations = nlohmann::json::array();
+  if (!channels.empty()) animations.push_back({{"name", "motion"}, {"samplers", samplers}, {"channels", channels}});
+  const uint64_t bin_length = off;
+  uint64_t total = 0;
+  const std::string json =
+      glb_json_chunk(path, scene_nodes, nodes, gmeshes, materials, accessors, views, bin_length, "animated meshes",
+                     "write fewer frames or coarser meshes", total, animations.empty() ? nullptr : &animations);
+  write_file_atomically(
+      path,
+      [&](std::ostream& os) {
+        LittleEndianSink out(os, path);
+        write_glb_header(out, total, json, bin_length);
+        for (size_t k = 0; k < nt; ++k) {
+          const float t = static_cast<float>(times_s[k]);
+          out.f32(t);
+        }
+        for (size_t i = 0; i < meshes.size(); ++i) {
+          const AnimatedMesh& m = meshes[i];
+          out.vec3s(m.frames[0], [](const Vec3& v) { return v; });
+          for (size_t k = 1; k < nt; ++k) {
+            std::vector<Vec3> d(m.frames[k].size());
+            for (size_t v = 0; v < d.size(); ++v) {
+              for (int c = 0; c < 3; ++c)
+                d[v][c] = static_cast<double>(static_cast<float>(m.frames[k][v][c]) -
+                                              static_cast<float>(m.frames[0][v][c]));
+            }
+            out.vec3s(d, [](const Vec3& v) { return v; });
+          }
+          out.triangles(m.faces);
+          if (targets > 0) {
+            for (size_t k = 0; k < nt; ++k) {
+              for (size_t w = 0; w < targets; ++w) out.f32(k >= 1 && w == k - 1 ? 1.0f : 0.0f);
+            }
+          }
+        }
+        out.flush();
+      },
+      true);
 }
 
 }  // namespace knitforge

@@ -66,6 +66,32 @@ struct YarnGlbSummary {
 YarnGlbSummary write_yarn_glb(const std::string& path, const YarnModel& yarn, const KnitParams& params,
                               const TubeOptions& options = {}, std::span<const RenderColour> colours = {});
 
+/// A triangle mesh whose vertices move: the same faces in every frame.
+struct AnimatedMesh {
+  std::string name;
+  RenderColour colour{200, 200, 200};  ///< sRGB base colour
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::vector<Vec3>> frames;  ///< vertex positions per frame (mm)
+};
+
+/// Writes `meshes`, animated over the frame times `times_s` (one per frame,
+/// increasing), as one .glb, atomically. Per mesh: one node and a
+/// double-sided material; POSITION = frame 0 (float32, min/max), uint32
+/// indices, and one morph target per later frame k (POSITION = frame k -
+/// frame 0, with min/max as the specification requires). One animation
+/// "motion" drives every mesh's morph weights with LINEAR interpolation:
+/// at time t_k the weights are the unit vector of target k (all 0 at t_0),
+/// so between two frames the positions interpolate linearly. No normals
+/// (viewers shade flat). With one frame the meshes are static (no targets,
+/// no animation). The file is about 12 bytes per vertex and frame plus 4
+/// bytes per frame squared per mesh (the weights).
+/// 	hrow InvalidInput for no frame times, times not increasing, a frame
+///        count or vertex count that differs, a bad index, a coordinate
+///        that overflows float32, or more than the 4 GiB a GLB holds;
+///        IOError when the file cannot be written.
+void write_animation_glb(const std::string& path, std::span<const AnimatedMesh> meshes,
+                         std::span<const double> times_s);
+
 /// sRGB 8-bit -> linear 8-bit (rounded), as written to COLOR_0.
 uint8_t srgb_to_linear_byte(uint8_t c);
 

@@ -12,12 +12,13 @@ constexpr double kKeep = 0.1;  // keep at least this fraction of the start dista
 constexpr int kMaxAdvances = 10000;
 
 // Distance from p to the body at time t of its motion start -> end, if
-// within `bound` (else +inf).
+// within `bound` (else +inf). The tree's nearest() takes the bound by value
+// and lowers its own copy: the best distance is kept here, in best2.
 double distance_at(const TriMesh& start, const std::vector<Vec3>* end, const AabbTree& tree, const Vec3& p,
                    double t, double bound) {
   double best2 = bound * bound;
   bool found = false;
-  tree.nearest(p, best2, [&](int f, double& bound2) {
+  tree.nearest(p, bound * bound, [&](int f, double& bound2) {
     const auto& tri = start.faces[f];
     Vec3 c[3];
     for (int k = 0; k < 3; ++k) {
@@ -25,24 +26,27 @@ double distance_at(const TriMesh& start, const std::vector<Vec3>* end, const Aab
       if (end) c[k] += t * ((*end)[tri[k]] - c[k]);
     }
     const double d2 = (closest_point_on_triangle(p, c[0], c[1], c[2]) - p).squaredNorm();
-    if (d2 <= bound2) bound2 = d2, found = true;
+    if (d2 <= bound2) bound2 = best2 = d2, found = true;
   });
   return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
 }
 
-double advance(const TriMesh& start, const std::vector<Vec3>* end, const AabbTree& tree, double body_speed,
-               const Eigen::VectorXd& x0, const Eigen::VectorXd& x1, const std::vector<char>& skip) {
+// The largest fraction t (< t_limit) of the move x0 -> x1 over which a
+// vertex of a body at rest keeps kKeep of its start distance: conservative
+// advancement, the distance changing at most at the vertex's speed.
+double advance(const TriMesh& start, const AabbTree& tree, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
+               const std::vector<char>& skip) {
   double t_min = 1.0;
   const int n = static_cast<int>(x0.size() / 3);
   for (int v = 0; v < n && t_min > 0; ++v) {
     if (!skip.empty() && skip[v]) continue;
     const Vec3 p0 = x0.segment<3>(3 * v);
     const Vec3 dp = x1.segment<3>(3 * v) - p0;
-    const double l = dp.norm() + body_speed;
+    const double l = dp.norm();
     if (!(l > 0)) continue;
     // Farther than l / (1 - kKeep): the whole move keeps 90 % of the distance.
     const double reach = l / (1.0 - kKeep);
-    const double d0 = distance_at(start, end, tree, p0, 0.0, reach);
+    const double d0 = distance_at(start, nullptr, tree, p0, 0.0, reach);
     if (!std::isfinite(d0)) continue;
     if (!(d0 > 0)) return 0.0;
     const double g = kKeep * d0;
@@ -56,7 +60,7 @@ double advance(const TriMesh& start, const std::vector<Vec3>* end, const AabbTre
         break;
       }
       t = next;
-      d = distance_at(start, end, tree, p0 + t * dp, t, d0 + l);
+      d = distance_at(start, nullptr, tree, p0 + t * dp, t, d0 + l);
       if (d - g <= 0.1 * (d0 - g)) break;
     }
     if (limited) t_min = std::min(t_min, t);
@@ -64,21 +68,86 @@ double advance(const TriMesh& start, const std::vector<Vec3>* end, const AabbTre
   return t_min;
 }
 
+// The same for a moving body, face by face: the distance from the vertex to
+// one face changes at most at the vertex's speed plus the face's (the
+// largest of its corners' displacements), so each face gets its own bound
+// and keeps kKeep of its own start distance. A vertex resting on a still part
+// of the body is then held back only by the moving faces near it, by how
+// near they are, not by the fastest part of the body or by its distance to
+// the still part.
+// With per_vertex, every vertex's own fraction is stored there (and the
+// search does not stop at the first vertex that allows none).
+double advance_moving(const TriMesh& start, const std::vector<Vec3>& end, const AabbTree& swept,
+                      const std::vector<double>& face_speed, double body_speed, const Eigen::VectorXd& x0,
+                      const Eigen::VectorXd& x1, const std::vector<char>& skip, std::vector<double>* per_vertex) {
+  double t_all = 1.0;
+  const int n = static_cast<int>(x0.size() / 3);
+  if (per_vertex) per_vertex->assign(n, 1.0);
+  for (int v = 0; v < n && (per_vertex || t_all > 0); ++v) {
+    if (!skip.empty() && skip[v]) continue;
+    double t_min = per_vertex ? 1.0 : t_all;
+    const Vec3 p0 = x0.segment<3>(3 * v);
+    const Vec3 dp = x1.segment<3>(3 * v) - p0;
+    const double speed = dp.norm();
+    if (!(speed + body_speed > 0)) continue;
+    const Aabb path = Aabb::of({p0, p0 + dp});
+    swept.for_each_overlapping(path.inflated((speed + body_speed) / (1.0 - kKeep)), [&](int f) {
+      if (t_min <= 0) return;
+      const double l = speed + face_speed[f];
+      if (!(l > 0)) return;
+      const auto& tri = start.faces[f];
+      auto distance = [&](double t) {
+        Vec3 c[3];
+        for (int k = 0; k < 3; ++k) c[k] = start.vertices[tri[k]] + t * (end[tri[k]] - start.vertices[tri[k]]);
+        const Vec3 p = p0 + t * dp;
+        return (closest_point_on_triangle(p, c[0], c[1], c[2]) - p).norm();
+      };
+      const double d0 = distance(0.0);
+      if (d0 * (1.0 - kKeep) >= l) return;  // keeps 90 % over the whole move
+      if (!(d0 > 0)) {
+        t_min = 0.0;
+        return;
+      }
+      const double g = kKeep * d0;
+      double t = 0.0, d = d0;
+      for (int it = 0; it < kMaxAdvances; ++it) {
+        const double next = t + 0.9 * (d - g) / l;
+        if (next >= t_min || next >= 1.0) return;  // not limiting
+        t = next;
+        d = distance(t);
+        if (d - g <= 0.1 * (d0 - g)) break;
+      }
+      t_min = std::min(t_min, t);
+    });
+    t_all = std::min(t_all, t_min);
+    if (per_vertex) (*per_vertex)[v] = t_min;
+  }
+  return t_all;
+}
+
 }  // namespace
 
 double collision_free_step(const KinematicBody& body, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
                            const std::vector<char>& skip) {
   if (body.empty()) return 1.0;
-  return advance(body.mesh(), nullptr, body.tree(), 0.0, x0, x1, skip);
+  return advance(body.mesh(), body.tree(), x0, x1, skip);
 }
 
 double collision_free_step(const KinematicBody& body, const std::vector<Vec3>& body_end, const Eigen::VectorXd& x0,
-                           const Eigen::VectorXd& x1, const std::vector<char>& skip) {
-  if (body.empty()) return 1.0;
+                           const Eigen::VectorXd& x1, const std::vector<char>& skip, std::vector<double>* per_vertex) {
+  if (body.empty()) {
+    if (per_vertex) per_vertex->assign(x0.size() / 3, 1.0);
+    return 1.0;
+  }
+  const TriMesh& m = body.mesh();
+  std::vector<double> face_speed(m.faces.size(), 0.0);
   double speed = 0.0;
-  for (size_t k = 0; k < body_end.size(); ++k) speed = std::max(speed, (body_end[k] - body.mesh().vertices[k]).norm());
-  const AabbTree swept(face_boxes(body.mesh(), &body_end));
-  return advance(body.mesh(), &body_end, swept, speed, x0, x1, skip);
+  for (size_t f = 0; f < m.faces.size(); ++f) {
+    for (int k : m.faces[f]) face_speed[f] = std::max(face_speed[f], (body_end[k] - m.vertices[k]).norm());
+    speed = std::max(speed, face_speed[f]);
+  }
+  const AabbTree swept(face_boxes(m, &body_end));
+  return advance_moving(m, body_end, swept, face_speed, speed, x0, x1, skip, per_vertex);
 }
 
 double min_distance_to_body(const KinematicBody& body, const Eigen::VectorXd& x, double max_distance,

@@ -106,18 +106,20 @@ KnitMaterial material_from_json(const nlohmann::json& j, const std::string& wher
   return m;
 }
 
-KnitMaterial read_material_json(const std::string& path) {
+nlohmann::json read_json_file(const std::string& path, const std::string& what) {
   std::ifstream in(path);
-  if (!in) throw IOError(fmt::format("{}: cannot open the material file", path));
+  if (!in) throw IOError(fmt::format("{}: cannot open the {}", path, what));
   std::stringstream ss;
   ss << in.rdbuf();
-  nlohmann::json j;
   try {
-    j = nlohmann::json::parse(ss.str());
+    return nlohmann::json::parse(ss.str());
   } catch (const nlohmann::json::parse_error& e) {
     throw IOError(fmt::format("{}: not valid JSON ({})", path, e.what()));
   }
-  return material_from_json(j, path);
+}
+
+KnitMaterial read_material_json(const std::string& path) {
+  return material_from_json(read_json_file(path, "material file"), path);
 }
 
 }  // namespace knitforge

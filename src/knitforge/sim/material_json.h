@@ -30,6 +30,11 @@ nlohmann::json material_to_json(const KnitMaterial& m);
 ///        unknown field, a wrong type or a value validate_material() refuses.
 KnitMaterial material_from_json(const nlohmann::json& j, const std::string& where);
 
+/// The JSON value of a file; `what` names the file's role in messages
+/// ("material file"). \throw IOError when it cannot be opened or parsed
+///        (naming the file and the parser's position).
+nlohmann::json read_json_file(const std::string& path, const std::string& what);
+
 /// Reads a material file. \throw IOError when it cannot be read or parsed
 ///        (naming the file and the parser's position); InvalidInput as above.
 KnitMaterial read_material_json(const std::string& path);

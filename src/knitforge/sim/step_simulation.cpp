@@ -77,6 +77,15 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
       const auto q = body.closest_point_within(xn.segment<3>(3 * v), dhat + 2 * body_speed);
       if (q) x0.segment<3>(3 * v) += end_body.point(q->face, q->where.bary) - q->where.point;
     }
+    // Carrying a vertex with its closest face can drive it into another part
+    // of the body (a vertex in the crease of an elbow, carried by the forearm
+    // into the upper arm): such a vertex starts where it is instead, and the
+    // check below decides whether the body's motion lets it.
+    std::vector<double> free_fraction;
+    collision_free_step(body, body_end, xn, x0, ws.pinned_vertices(), &free_fraction);
+    for (int v = 0; v < model.num_vertices(); ++v) {
+      if (free_fraction[v] < 1.0) x0.segment<3>(3 * v) = xn.segment<3>(3 * v);
+    }
   }
   for (size_t k = 0; k < model.pinned.size() && k < pin_targets.size(); ++k) {
     x0.segment<3>(3 * model.pinned[k]) = pin_targets[k];

@@ -1,0 +1,387 @@
+// knitforge cloth: a garment on a moving body by the fabric simulator
+// (docs/sim.md, "Garments on a moving body"): a scene file or a built-in
+// scene (a capsule arm bending inside a sleeve), written as an OBJ/PLY
+// sequence, an animated glTF, per-frame stress and sliding, and a report page.
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.h"
+#include "knitforge/evaluate/scalar_colours.h"
+#include "knitforge/io/gltf.h"
+#include "knitforge/geometry/mesh_measures.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/png_image.h"
+#include "knitforge/render/camera.h"
+#include "knitforge/render/raster_preview.h"
+#include "knitforge/report/report_html.h"
+#include "knitforge/sim/cloth_scene.h"
+#include "knitforge/sim/contact_candidates.h"
+#include "knitforge/sim/kinematic_body.h"
+#include "knitforge/sim/material_json.h"
+#include "knitforge/sim/simulate_cloth.h"
+#include "knitforge/util/timer.h"
+
+namespace knitforge::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// What a scene becomes before the run: meshes loaded and checked.
+struct LoadedScene {
+  TriMesh garment;
+  std::vector<Vec3> course;
+  TriMesh body;
+  std::vector<std::vector<Vec3>> body_frames;  // empty = static
+  std::vector<int> pinned, attached;
+  std::vector<double> elbow_angle_deg;         // built-in arm: per frame
+};
+
+LoadedScene load_scene(const ClothScene& s) {
+  LoadedScene L;
+  if (s.builtin == "sleeve") {
+    const SleeveMesh sleeve = arm_sleeve_mesh(s.arm);
+    L.garment = sleeve.mesh;
+    L.course = sleeve.course_directions;
+    L.attached = sleeve.attached;
+    L.body = arm_body_mesh(s.arm, 0.0);
+    for (int f = 0; f <= s.frames; ++f) {
+      L.elbow_angle_deg.push_back(arm_elbow_angle_deg(s.arm, f, s.frames));
+      L.body_frames.push_back(arm_body_mesh(s.arm, L.elbow_angle_deg.back()).vertices);
+    }
+    return L;
+  }
+  L.garment = load_surface(s.garment_mesh, s.garment_units);
+  const int nf = L.garment.num_faces(), nv = L.garment.num_vertices();
+  if (!s.face_materials.empty() && static_cast<int>(s.face_materials.size()) != nf) {
+    throw InvalidInput(fmt::format("{}: garment.face_materials has {} entries, the garment {} has {} faces", s.where,
+                                   s.face_materials.size(), s.garment_mesh, nf));
+  }
+  if (s.course_direction) {
+    L.course = {*s.course_direction};
+  } else {
+    const auto& [point, dir] = *s.course_axis;
+    for (const auto& f : L.garment.faces) {
+      const Vec3 c = (L.garment.vertices[f[0]] + L.garment.vertices[f[1]] + L.garment.vertices[f[2]]) / 3.0;
+      L.course.push_back(dir.cross(c - point));  // build_sim_model refuses a course normal to its face
+    }
+  }
+  if (!s.body_mesh.empty()) {
+    L.body = load_surface(s.body_mesh, s.body_units);
+  } else {
+    for (size_t k = 0; k < s.body_frames.size(); ++k) {
+      TriMesh m = load_surface(s.body_frames[k], s.body_units);
+      if (k == 0) {
+        L.body = m;
+      } else if (m.faces != L.body.faces) {
+        throw InvalidInput(fmt::format("{}: body frame {} ({}) has other faces than frame 0 ({}); every frame must be "
+                                       "the same mesh, moved",
+                                       s.where, k, s.body_frames[k], s.body_frames[0]));
+      }
+      L.body_frames.push_back(std::move(m.vertices));
+    }
+  }
+  for (const auto* list : {&s.pinned, &s.attached}) {
+    for (int v : *list) {
+      if (v >= nv) {
+        throw InvalidInput(fmt::format("{}: '{}' names vertex {}, the garment has {} (0..{})", s.where,
+                                       list == &s.pinned ? "pin" : "attach", v, nv, nv - 1));
+      }
+    }
+  }
+  L.pinned = s.pinned;
+  L.attached = s.attached;
+  if (s.attach_within_mm > 0) {
+    KinematicBody body(L.body);
+    Eigen::VectorXd x(3 * static_cast<Eigen::Index>(nv));
+    for (int v = 0; v < nv; ++v) x.segment<3>(3 * v) = L.garment.vertices[v];
+    for (const ContactPair& c : find_contact_candidates(body, x, s.attach_within_mm)) L.attached.push_back(c.vertex);
+  }
+  std::sort(L.attached.begin(), L.attached.end());
+  L.attached.erase(std::unique(L.attached.begin(), L.attached.end()), L.attached.end());
+  for (int v : L.attached) {
+    if (std::find(s.pinned.begin(), s.pinned.end(), v) != s.pinned.end()) {
+      throw InvalidInput(fmt::format("{}: vertex {} is both pinned and attached; choose one", s.where, v));
+    }
+  }
+  return L;
+}
+
+std::vector<Rgb> to_rgb(const std::vector<Rgb8>& c) {
+  std::vector<Rgb> out(c.size());
+  for (size_t i = 0; i < c.size(); ++i) out[i] = {c[i][0], c[i][1], c[i][2]};
+  return out;
+}
+
+// Values rounded to 4 significant digits of the field's largest magnitude (compact JSON).
+json rounded(const std::vector<double>& v) {
+  double top = 0;
+  for (double x : v) top = std::max(top, std::abs(x));
+  const double q = top > 0 ? std::pow(10.0, std::floor(std::log10(top)) - 3) : 1.0;
+  json out = json::array();
+  for (double x : v) out.push_back(std::round(x / q) * q);
+  return out;
+}
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+}  // namespace
+
+void add_cloth_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand(
+      "cloth",
+      "A garment on a moving body by the fabric simulator (docs/sim.md): a scene file (docs/formats.md) or a "
+      "built-in scene (--builtin sleeve: a capsule arm bending at the elbow inside a knitted sleeve); writes the "
+      "animation (OBJ/PLY sequence, animation.glb), per-frame stress and sliding, cloth.json and report.html");
+  struct Opts {
+    std::string scene, builtin, outdir;
+    int frames = 0, substeps = 0;
+    double max_work = kMaxClothWork;
+    bool json = false;
+  };
+  auto o = std::make_shared<Opts>();
+  cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md \"Cloth scene\")");
+  cmd->add_option("--builtin", o->builtin, "A built-in scene instead of a file: sleeve");
+  cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
+  cmd->add_option("--frames", o->frames, "Frames to simulate (overrides the scene's)")->check(CLI::Range(1, 100000));
+  cmd->add_option("--substeps", o->substeps, "Time steps per frame (overrides the scene's)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--max-work", o->max_work,
+                  "Refuse runs of more garment vertices x frames x substeps than this")
+      ->check(positive_number())
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "Also print the summary (report.json) on stdout");
+  cmd->callback([=, &action] {
+    action = [=]() -> int {
+      const Timer all;
+      if (o->scene.empty() == o->builtin.empty()) {
+        throw UsageError("cloth: give a scene file or --builtin NAME (one of them)");
+      }
+      if (!o->scene.empty()) check_input_file(o->scene);
+      check_output_dir("--output", o->outdir, o->scene.empty() ? std::vector<std::string>{}
+                                                                : std::vector<std::string>{o->scene});
+      ClothScene scene = o->builtin.empty() ? read_cloth_scene(o->scene) : builtin_cloth_scene(o->builtin);
+      if (o->frames > 0) {
+        if (!scene.body_frames.empty() && o->frames != scene.frames) {
+          throw UsageError(fmt::format("--frames {}: the scene's body has {} frames; --frames only changes scenes "
+                                       "with a static or built-in body",
+                                       o->frames, scene.frames));
+        }
+        scene.frames = o->frames;
+      }
+      if (o->substeps > 0) scene.substeps = o->substeps;
+      const LoadedScene L = load_scene(scene);
+      check_cloth_work(L.garment.num_vertices(), scene.frames, scene.substeps, o->max_work);
+
+      SimModelOptions mo;
+      mo.materials = scene.materials;
+      SimModel model = build_sim_model(L.garment, L.course, scene.face_materials, mo);
+      model.pinned = L.pinned;
+      model.pinned.insert(model.pinned.end(), L.attached.begin(), L.attached.end());
+      std::sort(model.pinned.begin(), model.pinned.end());
+      model.pinned.erase(std::unique(model.pinned.begin(), model.pinned.end()), model.pinned.end());
+
+      ClothOptions co;
+      co.frames = scene.frames;
+      co.frame_rate_hz = scene.frame_rate_hz;
+      co.substeps = scene.substeps;
+      co.gravity_mm_s2 = scene.gravity_mm_s2;
+      co.contact.friction = scene.friction;
+      co.contact.distance_mm = scene.contact_distance_mm;
+      co.sliding_distance_mm = scene.sliding_distance_mm;
+      co.newton.max_iterations = scene.max_newton_iterations;
+      co.newton.force_tolerance_mn = scene.force_tolerance_mn;
+      note(fmt::format("cloth: {} ({} vertices, {} triangles; body {} vertices), {} frames at {} Hz x {} substeps ...",
+                       scene.where, model.num_vertices(), model.num_elements(), L.body.num_vertices(), co.frames,
+                       co.frame_rate_hz, co.substeps));
+      const Timer sim_timer;
+      const ClothResult r = simulate_cloth(model, L.body, L.body_frames, L.attached, co, [&](const ClothFrame& f) {
+        if (f.frame > 0 && (f.frame % 10 == 0 || f.frame == co.frames)) {
+          note(fmt::format("[{:3d} %] frame {}/{}: {} Newton iterations, closest {:.3g} mm, {:.1f} s",
+                           100 * f.frame / co.frames, f.frame, co.frames, f.newton_iterations, f.min_distance_mm,
+                           sim_timer.seconds()));
+        }
+      });
+      const double sim_seconds = sim_timer.seconds();
+
+      // Outputs.
+      const Timer write_timer;
+      fs::create_directories(fs::path(o->outdir) / "frames");
+      auto out = [&](const std::string& name) { return (fs::path(o->outdir) / name).string(); };
+      double stress_top = 0, sliding_top = 0;
+      for (double v : r.max_stress_kpa) stress_top = std::max(stress_top, v);
+      for (double v : r.max_sliding_mm) sliding_top = std::max(sliding_top, v);
+      TriMesh g = L.garment, b = L.body;
+      std::vector<AnimatedMesh> anim(2);
+      anim[0].name = "garment";
+      anim[0].colour = {70, 130, 200};
+      anim[0].faces = L.garment.faces;
+      anim[1].name = "body";
+      anim[1].colour = {225, 190, 160};
+      anim[1].faces = L.body.faces;
+      std::vector<double> times;
+      json frames = json::array(), fields = json::array();
+      // Built-in arm: the signed clearance of the free vertices to the true
+      // capsules (the engine's distances are unsigned, to the mesh).
+      std::vector<char> held(model.num_vertices(), 0);
+      for (int v : model.pinned) held[v] = 1;
+      auto arm_clearance = [&](const ClothFrame& f) {
+        double c = std::numeric_limits<double>::infinity();
+        for (int v = 0; v < model.num_vertices(); ++v)
+          if (!held[v]) c = std::min(c, arm_signed_distance(scene.arm, L.elbow_angle_deg[f.frame], f.positions[v]));
+        return c;
+      };
+      double min_clearance = std::numeric_limits<double>::infinity();
+      for (const ClothFrame& f : r.frames) {
+        g.vertices = f.positions;
+        b.vertices = f.body;
+        const std::string stem = fmt::format("frames/{:04d}", f.frame);
+        write_mesh(out(stem + "_garment.obj"), g);
+        write_mesh(out(stem + "_body.obj"), b);
+        MeshWriteOptions w;
+        w.face_colours = to_rgb(scalar_colours(f.stress_kpa, 0.0, stress_top));
+        w.vertex_colours = to_rgb(scalar_colours(f.sliding_mm, 0.0, sliding_top));
+        write_mesh(out(stem + "_garment.ply"), g, w);
+        anim[0].frames.push_back(f.positions);
+        anim[1].frames.push_back(f.body);
+        times.push_back(f.time_s);
+        double smax = 0, lmax = 0;
+        for (double v : f.stress_kpa) smax = std::max(smax, v);
+        for (double v : f.sliding_mm) lmax = std::max(lmax, v);
+        json fj = {{"frame", f.frame},
+                   {"time_s", f.time_s},
+                   {"newton_iterations", f.newton_iterations},
+                   {"converged", f.converged},
+                   {"steps", f.steps},
+                   {"contacts", f.contacts},
+                   {"touching", f.touching},
+                   {"min_distance_mm", finite_or_null(f.min_distance_mm)},
+                   {"max_residual_force_mn", f.max_force_mn},
+                   {"energy_uj",
+                    {{"elastic", f.elastic_energy_uj},
+                     {"kinetic", f.kinetic_energy_uj},
+                     {"gravity", f.gravity_energy_uj},
+                     {"total", f.elastic_energy_uj + f.kinetic_energy_uj + f.gravity_energy_uj}}},
+                   {"max_stress_kpa", smax},
+                   {"max_sliding_mm", lmax},
+                   {"seconds", newton_timings_json(f.seconds)}};
+        if (!L.elbow_angle_deg.empty()) {
+          fj["elbow_angle_deg"] = L.elbow_angle_deg[f.frame];
+          const double c = arm_clearance(f);
+          fj["min_arm_clearance_mm"] = c;
+          min_clearance = std::min(min_clearance, c);
+        }
+        frames.push_back(fj);
+        fields.push_back({{"frame", f.frame}, {"stress_kpa", rounded(f.stress_kpa)}, {"sliding_mm", rounded(f.sliding_mm)}});
+      }
+      write_animation_glb(out("animation.glb"), anim, times);
+      {
+        MeshWriteOptions w;
+        g.vertices = r.frames.back().positions;
+        w.face_colours = to_rgb(scalar_colours(r.max_stress_kpa, 0.0, stress_top));
+        w.vertex_colours = to_rgb(scalar_colours(r.max_sliding_mm, 0.0, sliding_top));
+        write_mesh(out("maxima.ply"), g, w);
+      }
+      {
+        // A picture of the last frame: the garment coloured by its stress
+        // then (viridis on [0, the maximum over time]), the body skin-coloured.
+        std::vector<RenderMesh> scene(2);
+        scene[0].mesh = L.garment;
+        scene[0].mesh.vertices = r.frames.back().positions;
+        for (const Rgb8& c : scalar_colours(r.frames.back().stress_kpa, 0.0, stress_top))
+          scene[0].face_colours.push_back({c[0], c[1], c[2]});
+        scene[1].mesh = L.body;
+        scene[1].mesh.vertices = r.frames.back().body;
+        scene[1].normals = vertex_normals(scene[1].mesh);
+        scene[1].colour = {225, 190, 160};
+        std::vector<Vec3> points = scene[0].mesh.vertices;
+        points.insert(points.end(), scene[1].mesh.vertices.begin(), scene[1].mesh.vertices.end());
+        RasterOptions ro;
+        ro.width = 800;
+        ro.height = 560;
+        const Camera cam = frame_points(points, 800.0 / 560.0, false, Vec3(0.3, -1.0, 0.45), Vec3::UnitZ());
+        write_png(out("last_frame.png"), rasterize(scene, cam, ro));
+      }
+      int unconverged = 0;
+      for (const ClothFrame& f : r.frames) unconverged += f.converged ? 0 : 1;
+      json summary;
+      summary["command"] = "cloth";
+      summary["scene"] = cloth_scene_to_json(scene);
+      summary["scene"]["source"] = scene.where;
+      summary["setup"] = {{"garment_vertices", model.num_vertices()},
+                          {"garment_triangles", model.num_elements()},
+                          {"body_vertices", L.body.num_vertices()},
+                          {"body_triangles", L.body.num_faces()},
+                          {"pinned", L.pinned.size()},
+                          {"attached", L.attached.size()},
+                          {"time_step_s", 1.0 / (co.frame_rate_hz * co.substeps)},
+                          {"materials", [&] {
+                             json m = json::array();
+                             for (const KnitMaterial& k : model.materials) m.push_back(k.name);
+                             return m;
+                           }()}};
+      summary["result"] = {{"converged", r.converged},
+                           {"frames_not_converged", unconverged},
+                           {"newton_iterations", r.newton_iterations},
+                           {"steps", r.steps},
+                           {"min_distance_mm", finite_or_null(r.min_distance_mm)},
+                           {"min_arm_clearance_mm", finite_or_null(min_clearance)},
+                           {"penetration",
+                            "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
+                            "all frames (> 0 by the barrier and collision-free steps, which keep every vertex on the "
+                            "side of the body it starts on); for the built-in arm, min_arm_clearance_mm is the "
+                            "smallest signed distance of a free vertex to the true capsules (negative inside; the "
+                            "mesh is inscribed, so down to minus its chord sag)"},
+                           {"max_stress_kpa", stress_top},
+                           {"max_sliding_mm", sliding_top},
+                           {"stress_measure",
+                            "largest principal Cauchy membrane stress of each triangle / thickness (kPa, 0 when "
+                            "compressed)"},
+                           {"sliding_measure",
+                            "per vertex: distance on the body between its contact point and the point where it first "
+                            "touched (mm; touching = within sliding_distance_mm)"}};
+      summary["seconds"] = {{"simulation", sim_seconds}, {"newton", newton_timings_json(r.seconds)},
+                            {"measures", r.measure_seconds}};
+      summary["outputs"] = {{"animation", "animation.glb (garment and body, morph targets, LINEAR)"},
+                            {"sequence", "frames/NNNN_garment.obj, frames/NNNN_body.obj"},
+                            {"colours", "frames/NNNN_garment.ply: face colour = stress, vertex colour = sliding "
+                                        "(viridis on [0, the maximum over time])"},
+                            {"maxima", "maxima.ply (last frame; colours = maxima over time)"},
+                            {"picture", "last_frame.png (garment coloured by its stress at the last frame)"},
+                            {"fields", "cloth.json: per-frame stress per triangle and sliding per vertex"}};
+      json full = summary;
+      full["frames"] = frames;
+      full["fields"] = fields;
+      full["max_stress_kpa_per_triangle"] = rounded(r.max_stress_kpa);
+      full["max_sliding_mm_per_vertex"] = rounded(r.max_sliding_mm);
+      summary["frames"] = frames;
+      write_report_json(out("cloth.json"), full, false);
+      write_report_json(out("material.json"), material_to_json(model.materials[0]), false);
+      // The report page shows the last frame: the body as the "target" layer,
+      // the garment (coloured files above) as the "relaxed" layer.
+      write_mesh(out("target.ply"), b);
+      g.vertices = r.frames.back().positions;
+      write_mesh(out("relaxed.ply"), g);
+      summary["seconds"]["write"] = write_timer.seconds();
+      summary["seconds"]["total"] = all.seconds();
+      summary["report_page"] = "report.html shows the last frame (body = target layer, garment = relaxed layer); the "
+                               "animation is in animation.glb";
+      write_report_json(out("report.json"), summary, o->json);
+      ReportHtmlOptions ro;
+      ro.title = "cloth: " + scene.where + " (last frame)";
+      write_report_html(o->outdir, ro);
+      note(fmt::format("{} frames, {} steps, {} Newton iterations{}; closest distance to the body {:.3g} mm; "
+                       "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
+                       co.frames, r.steps, r.newton_iterations,
+                       unconverged ? fmt::format(" ({} frames with an unconverged solve)", unconverged) : "",
+                       r.min_distance_mm, stress_top, sliding_top, all.seconds(), o->outdir));
+      return 0;
+    };
+  });
+}
+
+}  // namespace knitforge::cli

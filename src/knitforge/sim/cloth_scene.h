@@ -1,0 +1,98 @@
+#pragma once
+/// \file cloth_scene.h
+/// The scene of `knitforge cloth` (docs/formats.md, "Cloth scene"): a
+/// garment, a body that moves, and how to simulate them, read from JSON with
+/// every field named with its unit. Unknown fields are an error (a typo
+/// would silently keep a default). The reader checks the scene's own
+/// values; the meshes it names are read by the caller (the CLI, with the
+/// readers of io/) and checked against the scene there (counts, indices).
+///
+///   {"garment": {"mesh": "sleeve.obj", "units": "mm",
+///                "course_direction": [0, 0, 1]            // or
+///                "course_axis": {"point": [0,0,0], "direction": [1,0,0]},
+///                "material": "jersey.json" | {...},       // or
+///                "materials": [...], "face_materials": [0, 1, ...]},
+///    "body": {"mesh": "arm.obj"}                          // static, or
+///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},
+///    "frames": 30, "frame_rate_hz": 30, "substeps": 2,
+///    "friction": 0.5, "gravity_mm_s2": [0, 0, -9810],
+///    "pin": [vertex, ...], "attach": [vertex, ...], "attach_within_mm": 0,
+///    "contact_distance_mm": 0.5, "sliding_distance_mm": 1.0,
+///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01}}
+///
+/// or a built-in scene: {"builtin": "sleeve", "arm": {ArmMotionParams
+/// fields}, ...run fields} (arm_motion.h), which needs no file.
+/// Paths are relative to the scene file's directory.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "knitforge/geometry/vec.h"
+#include "knitforge/sim/arm_motion.h"
+#include "knitforge/sim/knit_material.h"
+
+namespace knitforge {
+
+/// The built-in scene names ("sleeve").
+const std::vector<std::string>& builtin_cloth_scene_names();
+
+struct ClothScene {
+  std::string where;    ///< the scene file, or "built-in NAME"
+  std::string builtin;  ///< "" or a name of builtin_cloth_scene_names()
+  ArmMotionParams arm;  ///< the built-in sleeve's arm
+
+  // The garment (file scenes).
+  std::string garment_mesh;    ///< path (resolved)
+  std::string garment_units = "mm";  ///< mm, cm or m (the caller scales)
+  std::optional<Vec3> course_direction;
+  /// Courses round an axis (a tube): course = direction x (centroid - point).
+  std::optional<std::pair<Vec3, Vec3>> course_axis;
+  std::vector<KnitMaterial> materials{default_single_jersey()};
+  std::vector<int> face_materials;  ///< empty (all materials[0]) or one per face
+
+  // The body (file scenes): one static mesh or frames + 1 meshes.
+  std::string body_mesh;
+  std::vector<std::string> body_frames;
+  std::string body_units = "mm";
+
+  // Pins: held in place (world), attached (carried with the closest body
+  // point, in its face's frame), every vertex within attach_within_mm of
+  // the body at the start attached.
+  std::vector<int> pinned, attached;
+  double attach_within_mm = 0.0;
+
+  // The run.
+  int frames = 30;
+  double frame_rate_hz = 30.0;
+  int substeps = 2;
+  double friction = 0.5;
+  Vec3 gravity_mm_s2{0.0, 0.0, -9810.0};
+  double contact_distance_mm = 0.5;
+  double sliding_distance_mm = 1.0;
+  int max_newton_iterations = 20;
+  double force_tolerance_mn = 1e-2;
+};
+
+/// The scene of a JSON value; `where` names it in messages, relative paths
+/// are resolved against `base_dir` ("" = as given).
+/// \throw InvalidInput naming `where` and the field for an unknown field, a
+///        wrong type, a value out of range (frames 1..100000, frame rate
+///        and substeps positive, friction >= 0, ...), a garment without a
+///        course direction, a body without a mesh, a frame list whose length
+///        is not frames + 1, a vertex index < 0, an unknown built-in name.
+ClothScene cloth_scene_from_json(const nlohmann::json& j, const std::string& where, const std::string& base_dir = "");
+
+/// Reads a scene file. \throw IOError when it cannot be read or is not
+///        JSON (naming the parser's position); InvalidInput as above.
+ClothScene read_cloth_scene(const std::string& path);
+
+/// The built-in scene `name` with its defaults (= cloth_scene_from_json({"builtin": name})).
+ClothScene builtin_cloth_scene(const std::string& name);
+
+/// The scene as JSON (what cloth.json records; paths as resolved).
+nlohmann::json cloth_scene_to_json(const ClothScene& scene);
+
+}  // namespace knitforge

@@ -1,0 +1,107 @@
+#pragma once
+/// \file simulate_cloth.h
+/// A garment on a moving body (docs/sim.md, "Garments on a moving body";
+/// seed ch. 4 §4.2-4.3, where the seed ran ARCSim with per-triangle
+/// materials and Coulomb friction): backward-Euler steps of
+/// step_simulation() while the body moves through its poses, with
+/// per-frame measures.
+///
+/// Frame f (1..frames) ends at t = f / frame_rate; it is `substeps` steps of
+/// h = 1 / (frame_rate substeps), the body moving linearly between its pose
+/// of frame f - 1 and that of frame f (vertex by vertex). Pinned vertices
+/// (SimModel::pinned) stay where they start, except the `attached` ones,
+/// which ride on the body: each keeps its closest body point at the start
+/// (face, barycentrics) and its offset from it in that face's frame (first
+/// edge, normal x edge, normal), so a rigid motion of the body carries it
+/// rigidly.
+///
+/// Per frame (frame 0 = the start): positions; per element the largest
+/// principal Cauchy membrane stress / thickness (kPa, 0 when compressed;
+/// membrane_stress()); per vertex the sliding over the body (mm,
+/// body_sliding.h); the smallest distance of a free vertex to the body (the
+/// barrier with collision-free steps keeps it > 0: the body is never
+/// penetrated); elastic, kinetic and gravitational energy (µJ); Newton
+/// iterations, whether every solve converged, steps taken (more than
+/// `substeps` when the body's motion split a step), contacts, the largest
+/// residual force; and the maxima over time per element and vertex.
+///
+/// Cost: about vertices x frames x substeps x Newton iterations; the CLI
+/// refuses more than kMaxClothWork vertex-steps unless told otherwise.
+
+#include <functional>
+#include <vector>
+
+#include "knitforge/geometry/tri_mesh.h"
+#include "knitforge/sim/contact_energy.h"
+#include "knitforge/sim/newton_solve.h"
+#include "knitforge/sim/psd_projection.h"
+#include "knitforge/sim/sim_model.h"
+
+namespace knitforge {
+
+/// The default limit on vertices x frames x substeps of one run: about
+/// 40 minutes at the rate measured on the 2-core machine (docs/sim.md).
+inline constexpr double kMaxClothWork = 5e6;
+
+struct ClothOptions {
+  int frames = 30;
+  double frame_rate_hz = 30.0;
+  int substeps = 2;
+  Vec3 gravity_mm_s2{0.0, 0.0, -9810.0};
+  ContactParams contact;
+  NewtonOptions newton{20, 1e-2};
+  PsdProjection projection = PsdProjection::Clamp;
+  /// A vertex touches the body (for the sliding measure) within this distance (mm).
+  double sliding_distance_mm = 1.0;
+  /// The closest distance per frame is searched within this range (mm);
+  /// farther gives +inf (no vertex near the body).
+  double distance_range_mm = 50.0;
+};
+
+struct ClothFrame {
+  int frame = 0;
+  double time_s = 0.0;
+  std::vector<Vec3> positions;     ///< garment vertices (mm)
+  std::vector<Vec3> body;          ///< body vertices at this frame (mm)
+  std::vector<double> stress_kpa;  ///< per element
+  std::vector<double> sliding_mm;  ///< per vertex
+  int touching = 0;                ///< vertices touching the body (sliding measured)
+  double min_distance_mm = 0.0;    ///< smallest free-vertex-to-body distance over the frame's steps
+  double elastic_energy_uj = 0.0, kinetic_energy_uj = 0.0, gravity_energy_uj = 0.0;
+  int newton_iterations = 0;
+  bool converged = true;
+  int steps = 0;  ///< backward-Euler steps (substeps, more when split)
+  int contacts = 0;
+  double max_force_mn = 0.0;  ///< largest residual force of the frame's last solve
+  NewtonTimings seconds;
+};
+
+struct ClothResult {
+  std::vector<ClothFrame> frames;       ///< frames + 1 (frame 0 = the start)
+  std::vector<double> max_stress_kpa;   ///< per element, over time
+  std::vector<double> max_sliding_mm;   ///< per vertex, over time
+  bool converged = true;                ///< every Newton solve converged
+  int newton_iterations = 0;
+  int steps = 0;
+  double min_distance_mm = 0.0;         ///< over every frame
+  NewtonTimings seconds;
+  double measure_seconds = 0.0;         ///< stress, sliding and distances
+};
+
+/// Runs the garment `model` (pins: SimModel::pinned, a superset of
+/// `attached`) against the body `body` (its frame-0 pose) moving through
+/// `body_frames` (frames + 1 vertex arrays of body's mesh, or empty: the body
+/// stays). `on_frame` (optional) sees every frame as it is made.
+/// \throw InvalidInput for bad options, a frame count that does not match,
+///        an attached vertex that is not pinned, or a fabric vertex that
+///        starts inside the contact distance of the body (give a clearance);
+///        SolverError from step_simulation() (the body moves through the
+///        fabric, non-finite energy), naming the frame.
+ClothResult simulate_cloth(const SimModel& model, const TriMesh& body, const std::vector<std::vector<Vec3>>& body_frames,
+                           const std::vector<int>& attached, const ClothOptions& options,
+                           const std::function<void(const ClothFrame&)>& on_frame = {});
+
+/// Refuses a run of vertices x frames x substeps above `limit` (check_work()).
+void check_cloth_work(int vertices, int frames, int substeps, double limit = kMaxClothWork);
+
+}  // namespace knitforge

@@ -1,0 +1,111 @@
+// End-to-end runs of `knitforge cloth` (docs/sim.md, "Garments on a moving
+// body"): a small built-in sleeve scene writes every output, and they parse;
+// bad scenes and runs over the work limit are refused with one line.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "e2e/cli_fixture.h"
+
+namespace knitforge_e2e {
+namespace {
+
+using nlohmann::json;
+
+uint32_t u32(const std::string& s, size_t at) {
+  uint32_t v = 0;
+  for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<uint8_t>(s[at + static_cast<size_t>(k)]);
+  return v;
+}
+
+class ClothCli : public Cli {
+ protected:
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(path(name)) << text;
+  }
+};
+
+constexpr const char* kSmallSleeve = R"({"builtin": "sleeve", "frames": 3, "frame_rate_hz": 20, "substeps": 1, "newton": {"max_iterations": 8},
+  "arm": {"upper_length_mm": 110, "forearm_length_mm": 100, "upper_radius_mm": 30, "forearm_radius_mm": 26,
+          "body_edge_mm": 10, "sleeve_edge_mm": 9, "transition_mm": 40, "max_angle_deg": 45}})";
+
+TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
+  write("scene.json", kSmallSleeve);
+  const CliRun r = run("cloth " + path("scene.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  ASSERT_EQ(c["frames"].size(), 4u);
+  EXPECT_DOUBLE_EQ(c["frames"][0]["elbow_angle_deg"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(c["frames"][3]["elbow_angle_deg"].get<double>(), 45.0);
+  const int nv = c["setup"]["garment_vertices"].get<int>(), nt = c["setup"]["garment_triangles"].get<int>();
+  const int nb = c["setup"]["body_vertices"].get<int>();
+  for (size_t f = 1; f < 4; ++f) {
+    EXPECT_GT(c["frames"][f]["newton_iterations"].get<int>(), 0);
+    EXPECT_GT(c["frames"][f]["min_distance_mm"].get<double>(), 0.0);
+    // Signed, to the true capsules: inside by at most the meshes' chord sag.
+    EXPECT_GT(c["frames"][f]["min_arm_clearance_mm"].get<double>(), -0.8);
+    EXPECT_TRUE(c["frames"][f]["energy_uj"]["elastic"].is_number());
+  }
+  ASSERT_EQ(c["fields"].size(), 4u);
+  EXPECT_EQ(c["fields"][2]["stress_kpa"].size(), static_cast<size_t>(nt));
+  EXPECT_EQ(c["fields"][2]["sliding_mm"].size(), static_cast<size_t>(nv));
+  EXPECT_EQ(c["max_stress_kpa_per_triangle"].size(), static_cast<size_t>(nt));
+  EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+  EXPECT_GT(c["result"]["min_arm_clearance_mm"].get<double>(), -0.8);
+  EXPECT_LT(c["result"]["min_arm_clearance_mm"].get<double>(), 5.0);  // the 5 mm clearance at the start
+  // The glTF: a valid container, two meshes with frames - 1 morph targets and the right counts.
+  const std::string glb = slurp(path("out/animation.glb"));
+  ASSERT_GT(glb.size(), 28u);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(glb, 8), glb.size());
+  const json g = json::parse(glb.substr(20, u32(glb, 12)));
+  EXPECT_EQ(g["asset"]["version"], "2.0");
+  ASSERT_EQ(g["meshes"].size(), 2u);
+  const json& garment = g["meshes"][0]["primitives"][0];
+  const json& body = g["meshes"][1]["primitives"][0];
+  EXPECT_EQ(g["accessors"][garment["attributes"]["POSITION"].get<int>()]["count"].get<int>(), nv);
+  EXPECT_EQ(g["accessors"][garment["indices"].get<int>()]["count"].get<int>(), 3 * nt);
+  EXPECT_EQ(g["accessors"][body["attributes"]["POSITION"].get<int>()]["count"].get<int>(), nb);
+  EXPECT_EQ(garment["targets"].size(), 3u);
+  EXPECT_EQ(body["targets"].size(), 3u);
+  ASSERT_EQ(g["animations"].size(), 1u);
+  const int input = g["animations"][0]["samplers"][0]["input"].get<int>();
+  EXPECT_EQ(g["accessors"][input]["count"].get<int>(), 4);
+  EXPECT_NEAR(g["accessors"][input]["max"][0].get<double>(), 3.0 / 20.0, 1e-6);
+  // The sequence, the coloured PLYs, the report.
+  for (const char* f : {"frames/0000_garment.obj", "frames/0003_garment.obj", "frames/0003_body.obj",
+                        "frames/0003_garment.ply", "maxima.ply", "report.json", "report.html", "material.json"}) {
+    EXPECT_TRUE(fs::exists(path("out/") + f)) << f;
+  }
+  const json rep = json::parse(slurp(path("out/report.json")));
+  EXPECT_EQ(rep["command"], "cloth");
+  EXPECT_FALSE(rep.contains("fields"));  // the page's metrics stay small
+}
+
+TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
+  write("typo.json", R"({"builtin": "sleeve", "frame": 3})");
+  CliRun r = run("cloth " + path("typo.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("unknown field 'frame'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("out/cloth.json")));
+  write("broken.json", R"({"builtin": )");
+  r = run("cloth " + path("broken.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("not valid JSON"), std::string::npos) << r.err;
+  write("nobody.json",
+        R"({"garment": {"mesh": "missing.obj", "course_direction": [1, 0, 0]}, "body": {"mesh": "missing.obj"}})");
+  r = run("cloth " + path("nobody.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+  r = run("cloth " + path("typo.json") + " --builtin sleeve -o " + path("out"));
+  EXPECT_EQ(r.code, 2);
+  r = run("cloth --builtin sleeve --max-work 1000 -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--max-work"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("out/cloth.json")));
+}
+
+}  // namespace
+}  // namespace knitforge_e2e
