@@ -144,13 +144,7 @@ void SparseSolver::refactor(const SparseMatrix& A) {
     return;
   }
   impl_->ok = false;
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-      if (!std::isfinite(it.value())) {
-        throw InvalidInput(fmt::format("sparse solver: matrix entry ({}, {}) is not finite", it.row(), it.col()));
-      }
-    }
-  }
+  check_finite(A);
   impl_->llt.factorize(A);
   if (impl_->llt.info() != Eigen::Success) {
     throw SolverError(fmt::format(

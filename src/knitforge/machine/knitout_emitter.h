@@ -152,6 +152,19 @@ inline void refuse_layout_problems(const MachineProfile& prof, const std::vector
                                                      : std::string()));
 }
 
+/// The shift that centres layout needles [min_needle, max_needle] on the
+/// machine's bed (needles numbered from 1). \throw InvalidInput when the
+/// layout is wider than the bed: "`what` needs N needles at its widest
+/// (`counted`); machine 'M' has K".
+inline int centred_needle_offset(const MachineProfile& prof, int min_needle, int max_needle, const char* what,
+                                 const char* counted) {
+  const int width = max_needle - min_needle + 1;
+  if (width > prof.needle_count)
+    throw InvalidInput(fmt::format("{} needs {} needles at its widest ({}); machine '{}' has {}", what, width, counted,
+                                   prof.name, prof.needle_count));
+  return 1 + (prof.needle_count - width) / 2 - min_needle;
+}
+
 /// The warning for a map whose stitches use several yarns, all knitted with
 /// carrier `main`; nullopt for one yarn.
 inline std::optional<std::string> several_yarns_warning(const KnittingMap& map, const std::string& main) {

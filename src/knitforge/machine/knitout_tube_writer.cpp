@@ -26,12 +26,8 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
   lo.max_closure_loops = 2;
   const TubeLayout L = plan_tube_layout(map, lo);
   writer_detail::refuse_layout_problems(prof, L.problems, "tube");
-  const int width = L.max_needle - L.min_needle + 1;
-  if (width > prof.needle_count)
-    throw InvalidInput(fmt::format("the tube needs {} needles at its widest (every other needle on each bed, "
-                                   "including transfer steps); machine '{}' has {}",
-                                   width, prof.name, prof.needle_count));
-  const int offset = 1 + (prof.needle_count - width) / 2 - L.min_needle;
+  const int offset = writer_detail::centred_needle_offset(
+      prof, L.min_needle, L.max_needle, "the tube", "every other needle on each bed, including transfer steps");
   const int R = map.rows, C = map.cols, h = map.tube_half();
   auto N = [&](int r, int c) { return L.needle_at(r, c) + offset; };
   auto back = [&](int c) { return c >= h; };

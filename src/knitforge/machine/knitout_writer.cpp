@@ -160,12 +160,8 @@ KnitoutProgram write_knitout(const KnittingMap& map, const MachineProfile& prof,
   const NeedleLayout L = plan_needle_layout(map, lo_opt);
   writer_detail::refuse_layout_problems(prof, L.problems, "map");
 
-  const int width = L.max_needle - L.min_needle + 1;
-  if (width > prof.needle_count)
-    throw InvalidInput(fmt::format(
-        "the fabric needs {} needles at its widest (including transfer steps); machine '{}' has {}", width,
-        prof.name, prof.needle_count));
-  const int offset = 1 + (prof.needle_count - width) / 2 - L.min_needle;
+  const int offset = writer_detail::centred_needle_offset(prof, L.min_needle, L.max_needle, "the fabric",
+                                                          "including transfer steps");
   auto N = [&](int r, int c) { return L.needle_at(r, c) + offset; };
   // the direction of a carrier's first pass after `in`
   const int first_dir = prof.carrier_park_side == BedSide::Left ? +1 : -1;
