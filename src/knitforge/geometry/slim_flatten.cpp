@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/SparseCore>
+
 #include <fmt/core.h>
 #include <Eigen/SVD>
 
@@ -18,19 +20,25 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Conjugate gradients on A x = b (A symmetric positive definite) from the
-// given x, preconditioned by the factor M of a nearby matrix. True when the
-// residual falls to 1e-8 of |b| within kMaxSteps steps; x is then the solution.
-bool preconditioned_cg(const SparseMatrix& A, const Eigen::VectorXd& b, const SparseSolver& M, Eigen::VectorXd& x) {
-  constexpr int kMaxSteps = 12;
-  const double goal = 1e-8 * b.norm();
-  Eigen::VectorXd r = b - A * x;
-  if (r.norm() <= goal) return true;
+// Conjugate gradients on A x = b (A symmetric positive definite, its lower
+// triangle stored) from the given x, preconditioned by the factor M of a
+// nearby matrix. Each step lowers the quadratic ½xᵀAx − bᵀx, so every iterate
+// is a descent direction for SLIM (the proxy's gradient at the current map is
+// the energy's): the solve need only be inexact, as in inexact Newton
+// methods. True when the residual falls to `forcing` times the starting one
+// (or to 1e-8 |b|) within kMaxSteps steps; x is then the approximate solution.
+bool preconditioned_cg(const SparseMatrix& A, const Eigen::VectorXd& b, const SparseSolver& M, double forcing,
+                       Eigen::VectorXd& x) {
+  constexpr int kMaxSteps = 6;
+  const auto S = A.selfadjointView<Eigen::Lower>();
+  Eigen::VectorXd r = b - S * x;
+  const double goal = std::max(1e-8 * b.norm(), forcing * r.norm());
+  if (r.norm() <= 1e-8 * b.norm()) return true;
   Eigen::VectorXd z = M.solve(r);
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
   for (int k = 0; k < kMaxSteps; ++k) {
-    const Eigen::VectorXd Ap = A * p;
+    const Eigen::VectorXd Ap = S * p;
     const double pAp = p.dot(Ap);
     if (!(pAp > 0.0)) return false;
     const double alpha = rz / pAp;
@@ -43,6 +51,35 @@ bool preconditioned_cg(const SparseMatrix& A, const Eigen::VectorXd& b, const Sp
     rz = rz_next;
   }
   return false;
+}
+
+// The proxy's matrix has one pattern for all iterations: its lower triangle
+// is built once, and slot[k] is the position in A.valuePtr() to which the
+// k-th entry of the assembly loop (faces in order, then the pairs (a, c) of
+// the face's unknowns with ids[c] <= ids[a]) adds. Assembling into the slots
+// costs a fraction of building the matrix from triplets every iteration.
+struct ProxyPattern {
+  SparseMatrix A;
+  std::vector<int> slot;
+};
+
+template <class ForEachEntry>
+ProxyPattern proxy_pattern(int num_unknowns, ForEachEntry&& for_each_entry) {
+  ProxyPattern pat;
+  std::vector<Eigen::Triplet<double>> trip;
+  for_each_entry([&](int row, int col) { trip.emplace_back(row, col, 0.0); });
+  pat.A.resize(num_unknowns, num_unknowns);
+  pat.A.setFromTriplets(trip.begin(), trip.end());
+  pat.A.makeCompressed();
+  pat.slot.reserve(trip.size());
+  const int* outer = pat.A.outerIndexPtr();
+  const int* inner = pat.A.innerIndexPtr();
+  for (const auto& t : trip) {
+    const int* begin = inner + outer[t.col()];
+    const int* end = inner + outer[t.col() + 1];
+    pat.slot.push_back(static_cast<int>(std::lower_bound(begin, end, t.row()) - inner));
+  }
+  return pat;
 }
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -244,12 +281,30 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
   out.initial_energy = energy;
   double residual = residual_of(uv);
   std::vector<Vec2> next(uv.size());
-  std::vector<Eigen::Triplet<double>> trip;
+  auto face_unknowns = [&](int f, int* ids) {
+    for (int j = 0; j < 3; ++j) {
+      for (int s = 0; s < 2; ++s) ids[2 * j + s] = var(mesh.faces[f][j], s);
+    }
+  };
+  ProxyPattern pattern = proxy_pattern(num_unknowns, [&](auto&& entry) {
+    for (int f = 0; f < nf; ++f) {
+      if (ops[f].area == 0.0) continue;
+      int ids[6];
+      face_unknowns(f, ids);
+      for (int a = 0; a < 6; ++a) {
+        for (int c = 0; c < 6; ++c) {
+          if (ids[a] >= 0 && ids[c] >= 0 && ids[c] <= ids[a]) entry(ids[a], ids[c]);
+        }
+      }
+    }
+  });
+  SparseMatrix& A = pattern.A;
   SparseSolver solver;
+  bool confirm = false;  // the next proxy solve is accurate (see the end of the loop)
   for (int it = 0; it < options.max_iterations && num_unknowns > 0; ++it) {
-    // Local step + assembly of the proxy's normal equations.
-    trip.clear();
-    trip.reserve(static_cast<size_t>(nf) * 36);
+    // Local step + assembly of the proxy's normal equations (lower triangle).
+    std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+    size_t next_slot = 0;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_unknowns);
     for (int f = 0; f < nf; ++f) {
       const FaceOperator& op = ops[f];
@@ -280,16 +335,14 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
       const Eigen::Matrix<double, 6, 6> H = op.area / mean_area * (M.transpose() * M);
       const Eigen::Matrix<double, 6, 1> g = op.area / mean_area * (M.transpose() * b);
       int ids[6];
-      for (int j = 0; j < 3; ++j) {
-        for (int s = 0; s < 2; ++s) ids[2 * j + s] = var(t[j], s);
-      }
+      face_unknowns(f, ids);
+      double* values = A.valuePtr();
       for (int a = 0; a < 6; ++a) {
         if (ids[a] < 0) continue;
         double r = g[a];
         for (int c = 0; c < 6; ++c) {
           if (ids[c] >= 0) {
-            if (ids[c] <= ids[a]) trip.emplace_back(ids[a], ids[c], H(a, c));
-            if (ids[c] < ids[a]) trip.emplace_back(ids[c], ids[a], H(a, c));
+            if (ids[c] <= ids[a]) values[pattern.slot[next_slot++]] += H(a, c);
           } else {
             r -= H(a, c) * fixed_value[c % 2];
           }
@@ -297,12 +350,12 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
         rhs[ids[a]] += r;
       }
     }
-    SparseMatrix A(num_unknowns, num_unknowns);
-    A.setFromTriplets(trip.begin(), trip.end());
     // The proxy changes little from one iteration to the next: its minimiser
-    // is found by conjugate gradients preconditioned with the factor of an
-    // earlier proxy, from the current map; a new factor only when that does
-    // not converge within a few steps. The step is cut for injectivity and
+    // is approximated by conjugate gradients preconditioned with the factor
+    // of an earlier proxy, from the current map, to a tenth of the starting
+    // residual once the constraints hold (before, and to confirm convergence,
+    // to 1e-8: the steps must move the constraint groups together); a new factor only when that is
+    // not reached within a few steps. The step is cut for injectivity and
     // must lower the energy below either way, so an inexact solve is safe.
     Eigen::VectorXd x(num_unknowns);
     for (int v = 0; v < n; ++v) {
@@ -310,7 +363,9 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
         if (const int i = var(v, d); i >= 0) x[i] = uv[v][d];
       }
     }
-    const bool solved = solver.factored() && preconditioned_cg(A, rhs, solver, x);
+    const bool feasible = residual <= 1e-9 * size;
+    const double forcing = feasible && !confirm ? 0.1 : 0.0;
+    const bool solved = solver.factored() && preconditioned_cg(A, rhs, solver, forcing, x);
     if (!solved) {
       solver.refactor(A);  // same pattern every iteration: the ordering is computed once
       x = solver.solve(rhs);
@@ -331,7 +386,6 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
                                                     dir[t[1]] - dir[t[0]], dir[t[2]] - dir[t[0]]));
     }
     double step = std::min(1.0, 0.8 * t_max);
-    const bool feasible = residual <= 1e-9 * size;
     double e_next = kInf;
     for (int tries = 0; tries < 60; ++tries) {
       for (int v = 0; v < n; ++v) next[v] = used[v] ? Vec2(uv[v] + step * dir[v]) : uv[v];
@@ -355,9 +409,16 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
     uv.swap(next);
     energy = e_next;
     residual = residual_of(uv);
+    // A small change after an inexact step proves nothing (the step may
+    // only have been short): convergence is confirmed by an accurate one.
     if (residual <= 1e-9 * size && feasible && change <= options.tolerance * energy) {
-      out.converged = true;
-      break;
+      if (forcing == 0.0) {
+        out.converged = true;
+        break;
+      }
+      confirm = true;
+    } else {
+      confirm = false;
     }
   }
   out.energy = energy;
