@@ -339,7 +339,8 @@ RowSparse bone_heat_weights(const TriMesh& mesh, const std::vector<int>& group, 
   }
   SparseMatrix A = L;
   for (int i = 0; i < V; ++i) A.coeffRef(i, i) += heat[static_cast<size_t>(i)];
-  const SparseSolver solver(A);
+  // Simplicial: the built-in body is bit-identical on every machine (sparse_solver.h).
+  const SparseSolver solver(A, FactorMode::Simplicial);
   const Eigen::MatrixXd W = solver.solve_columns(rhs);
   std::vector<Eigen::Triplet<double>> t;
   for (int i = 0; i < V; ++i) {

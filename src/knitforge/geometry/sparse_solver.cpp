@@ -31,14 +31,16 @@ struct SparseSolver::Impl {
     llt.cholmod().print = 0;
     llt.cholmod().error_handler = nullptr;
   }
+  FactorMode mode = FactorMode::Auto;
   static constexpr long kSupernodalFrom = 10000;
   void use_mode_for(long unknowns) {
-    llt.setMode(unknowns >= kSupernodalFrom ? Eigen::CholmodSupernodalLLt : Eigen::CholmodSimplicialLLt);
+    const bool supernodal = mode == FactorMode::Auto && unknowns >= kSupernodalFrom;
+    llt.setMode(supernodal ? Eigen::CholmodSupernodalLLt : Eigen::CholmodSimplicialLLt);
   }
 };
 
-SparseSolver::SparseSolver() : impl_(std::make_unique<Impl>()) {}
-SparseSolver::SparseSolver(const SparseMatrix& A) : SparseSolver() { factor(A); }
+SparseSolver::SparseSolver(FactorMode mode) : impl_(std::make_unique<Impl>()) { impl_->mode = mode; }
+SparseSolver::SparseSolver(const SparseMatrix& A, FactorMode mode) : SparseSolver(mode) { factor(A); }
 SparseSolver::~SparseSolver() = default;
 SparseSolver::SparseSolver(SparseSolver&&) noexcept = default;
 SparseSolver& SparseSolver::operator=(SparseSolver&&) noexcept = default;

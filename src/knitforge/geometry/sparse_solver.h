@@ -16,13 +16,23 @@ namespace knitforge {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
+/// How the factor is computed.
+/// - Auto: simplicial below 10k unknowns, supernodal from there on (fast).
+/// - Simplicial: always CHOLMOD's simplicial factor, which calls no BLAS.
+///   The supernodal factor's last bits depend on the BLAS kernels OpenBLAS
+///   picks for the CPU (Haswell, SkylakeX, ... give different round-off), so
+///   use this where a result must be bit-identical on every machine, e.g. the
+///   built-in body model (body/generated_body.h), whose fits amplify
+///   round-off.
+enum class FactorMode { Auto, Simplicial };
+
 /// Cholesky factor of a sparse symmetric positive definite matrix.
 /// Move-only. Only the lower triangle of the matrix is read.
 class SparseSolver {
  public:
-  SparseSolver();
+  explicit SparseSolver(FactorMode mode = FactorMode::Auto);
   /// Factors A (see factor()).
-  explicit SparseSolver(const SparseMatrix& A);
+  explicit SparseSolver(const SparseMatrix& A, FactorMode mode = FactorMode::Auto);
   ~SparseSolver();
   SparseSolver(SparseSolver&&) noexcept;
   SparseSolver& operator=(SparseSolver&&) noexcept;
