@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/SparseCore>
-
 #include <fmt/core.h>
 #include <Eigen/SVD>
 
@@ -54,30 +52,49 @@ bool preconditioned_cg(const SparseMatrix& A, const Eigen::VectorXd& b, const Sp
 }
 
 // The proxy's matrix has one pattern for all iterations: its lower triangle
-// is built once, and slot[k] is the position in A.valuePtr() to which the
-// k-th entry of the assembly loop (faces in order, then the pairs (a, c) of
-// the face's unknowns with ids[c] <= ids[a]) adds. Assembling into the slots
-// costs a fraction of building the matrix from triplets every iteration.
+// is built once, and slot[36 f + 6 a + c] is the position in A.valuePtr() to
+// which entry (a, c) of face f's 6 x 6 block adds (-1 where it adds nothing:
+// a fixed unknown, the upper triangle, or a face without area). Assembling
+// into the slots costs a fraction of building the matrix from triplets every
+// iteration.
 struct ProxyPattern {
   SparseMatrix A;
   std::vector<int> slot;
 };
 
-template <class ForEachEntry>
-ProxyPattern proxy_pattern(int num_unknowns, ForEachEntry&& for_each_entry) {
+// ids(f, out) writes face f's 6 unknowns (-1: fixed); skip(f): f adds nothing.
+template <class FaceUnknowns, class SkipFace>
+ProxyPattern proxy_pattern(int num_unknowns, int num_faces, FaceUnknowns&& ids_of, SkipFace&& skip) {
   ProxyPattern pat;
   std::vector<Eigen::Triplet<double>> trip;
-  for_each_entry([&](int row, int col) { trip.emplace_back(row, col, 0.0); });
+  for (int f = 0; f < num_faces; ++f) {
+    if (skip(f)) continue;
+    int ids[6];
+    ids_of(f, ids);
+    for (int a = 0; a < 6; ++a) {
+      for (int c = 0; c < 6; ++c) {
+        if (ids[a] >= 0 && ids[c] >= 0 && ids[c] <= ids[a]) trip.emplace_back(ids[a], ids[c], 0.0);
+      }
+    }
+  }
   pat.A.resize(num_unknowns, num_unknowns);
   pat.A.setFromTriplets(trip.begin(), trip.end());
   pat.A.makeCompressed();
-  pat.slot.reserve(trip.size());
   const int* outer = pat.A.outerIndexPtr();
   const int* inner = pat.A.innerIndexPtr();
-  for (const auto& t : trip) {
-    const int* begin = inner + outer[t.col()];
-    const int* end = inner + outer[t.col() + 1];
-    pat.slot.push_back(static_cast<int>(std::lower_bound(begin, end, t.row()) - inner));
+  pat.slot.assign(static_cast<size_t>(num_faces) * 36, -1);
+  for (int f = 0; f < num_faces; ++f) {
+    if (skip(f)) continue;
+    int ids[6];
+    ids_of(f, ids);
+    for (int a = 0; a < 6; ++a) {
+      for (int c = 0; c < 6; ++c) {
+        if (ids[a] < 0 || ids[c] < 0 || ids[c] > ids[a]) continue;
+        const int* begin = inner + outer[ids[c]];
+        const int* end = inner + outer[ids[c] + 1];
+        pat.slot[static_cast<size_t>(f) * 36 + 6 * a + c] = static_cast<int>(std::lower_bound(begin, end, ids[a]) - inner);
+      }
+    }
   }
   return pat;
 }
@@ -286,25 +303,14 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
       for (int s = 0; s < 2; ++s) ids[2 * j + s] = var(mesh.faces[f][j], s);
     }
   };
-  ProxyPattern pattern = proxy_pattern(num_unknowns, [&](auto&& entry) {
-    for (int f = 0; f < nf; ++f) {
-      if (ops[f].area == 0.0) continue;
-      int ids[6];
-      face_unknowns(f, ids);
-      for (int a = 0; a < 6; ++a) {
-        for (int c = 0; c < 6; ++c) {
-          if (ids[a] >= 0 && ids[c] >= 0 && ids[c] <= ids[a]) entry(ids[a], ids[c]);
-        }
-      }
-    }
-  });
+  ProxyPattern pattern =
+      proxy_pattern(num_unknowns, nf, face_unknowns, [&](int f) { return ops[f].area == 0.0; });
   SparseMatrix& A = pattern.A;
   SparseSolver solver;
   bool confirm = false;  // the next proxy solve is accurate (see the end of the loop)
   for (int it = 0; it < options.max_iterations && num_unknowns > 0; ++it) {
     // Local step + assembly of the proxy's normal equations (lower triangle).
     std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
-    size_t next_slot = 0;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_unknowns);
     for (int f = 0; f < nf; ++f) {
       const FaceOperator& op = ops[f];
@@ -337,12 +343,13 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
       int ids[6];
       face_unknowns(f, ids);
       double* values = A.valuePtr();
+      const int* slot = &pattern.slot[static_cast<size_t>(f) * 36];
       for (int a = 0; a < 6; ++a) {
         if (ids[a] < 0) continue;
         double r = g[a];
         for (int c = 0; c < 6; ++c) {
           if (ids[c] >= 0) {
-            if (ids[c] <= ids[a]) values[pattern.slot[next_slot++]] += H(a, c);
+            if (const int k = slot[6 * a + c]; k >= 0) values[k] += H(a, c);
           } else {
             r -= H(a, c) * fixed_value[c % 2];
           }
@@ -354,8 +361,8 @@ SlimFlattenResult slim_flatten(const TriMesh& mesh, const SlimFlattenOptions& op
     // is approximated by conjugate gradients preconditioned with the factor
     // of an earlier proxy, from the current map, to a tenth of the starting
     // residual once the constraints hold (before, and to confirm convergence,
-    // to 1e-8: the steps must move the constraint groups together); a new factor only when that is
-    // not reached within a few steps. The step is cut for injectivity and
+    // to 1e-8: the steps must move the constraint groups together); a new
+    // factor only when that is not reached within a few steps. The step is cut for injectivity and
     // must lower the energy below either way, so an inexact solve is safe.
     Eigen::VectorXd x(num_unknowns);
     for (int v = 0; v < n; ++v) {
