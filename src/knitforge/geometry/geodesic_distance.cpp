@@ -10,6 +10,7 @@
 
 #include "knitforge/geometry/geodesic_propagation.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/union_find.h"
 
 namespace knitforge {
 
@@ -57,18 +58,6 @@ double perimeter_param(const Vec3& b) {
   const int k = (m + 1) % 3;  // the edge opposite corner m
   return k + b[(k + 1) % 3];
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) {
-    for (int i = 0; i < n; ++i) parent[i] = i;
-  }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // True when the vertex sides are certified consistent with the source curve
 // (see geodesic_distance.h, "Two sides"): the side is constant on every

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <tuple>
 
 #include <Eigen/Geometry>
@@ -13,27 +12,11 @@
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/util/counting_sort.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/union_find.h"
 
 namespace knitforge {
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 void add(SurfaceReport& r, SurfaceIssue issue) {
   if (issue.is_error) {

@@ -157,7 +157,17 @@ double patch_max_abs_log_sigma(const TriMesh& mesh, const std::vector<FaceDistor
     throw InvalidInput("patch_max_abs_log_sigma: the radius must be finite and >= 0");
   std::vector<Vec3> centre(nf);
   std::vector<double> area(nf), l1(nf), l2(nf);
-  std::vector<std::vector<int>> vertex_faces(mesh.vertices.size());
+  // Faces around each vertex, in increasing order (compressed rows).
+  const size_t nv = mesh.vertices.size();
+  std::vector<int> vf_start(nv + 1, 0), vf(3 * static_cast<size_t>(nf));
+  for (const auto& t : mesh.faces)
+    for (int v : t) ++vf_start[static_cast<size_t>(v) + 1];
+  for (size_t v = 0; v < nv; ++v) vf_start[v + 1] += vf_start[v];
+  {
+    std::vector<int> next(vf_start.begin(), vf_start.end() - 1);
+    for (int f = 0; f < nf; ++f)
+      for (int v : mesh.faces[f]) vf[next[v]++] = f;
+  }
   for (int f = 0; f < nf; ++f) {
     const auto& t = mesh.faces[f];
     const Vec3& a = mesh.vertices[t[0]];
@@ -167,9 +177,9 @@ double patch_max_abs_log_sigma(const TriMesh& mesh, const std::vector<FaceDistor
     area[f] = 0.5 * (b - a).cross(c - a).norm();
     l1[f] = std::log(std::max(faces[f].sigma1, 1e-300));
     l2[f] = std::log(std::max(faces[f].sigma2, 1e-300));
-    for (int v : t) vertex_faces[v].push_back(f);
   }
   std::vector<int> mark(nf, -1), queue;
+  const double radius2 = radius * radius;
   double best = 0.0;
   for (int f = 0; f < nf; ++f) {
     queue.assign(1, f);
@@ -181,8 +191,9 @@ double patch_max_abs_log_sigma(const TriMesh& mesh, const std::vector<FaceDistor
       m1 += area[g] * l1[g];
       m2 += area[g] * l2[g];
       for (int v : mesh.faces[g]) {
-        for (int h : vertex_faces[v]) {
-          if (mark[h] == f || (centre[h] - centre[f]).norm() > radius) continue;
+        for (int i = vf_start[v]; i < vf_start[v + 1]; ++i) {
+          const int h = vf[i];
+          if (mark[h] == f || (centre[h] - centre[f]).squaredNorm() > radius2) continue;
           mark[h] = f;
           queue.push_back(h);
         }
