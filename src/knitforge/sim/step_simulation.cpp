@@ -133,6 +133,7 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
     x = r.x;
     out.converged = out.converged && r.converged;
     out.newton_iterations += r.iterations;
+    out.solves_at_iteration_limit += r.stop_reason == "iteration limit" ? 1 : 0;
     out.max_force_mn = r.max_force_mn;
     accumulate(out.seconds, r.seconds);
   }
@@ -171,6 +172,7 @@ StepResult step_recursive(SimWorkspace& ws, const SimState& state, const Kinemat
   StepResult second = step_recursive(ws, first.state, mid, body_end, pin_targets, o, 0.5 * h, depth + 1);
   second.converged = second.converged && first.converged;
   second.newton_iterations += first.newton_iterations;
+  second.solves_at_iteration_limit += first.solves_at_iteration_limit;
   second.substeps += first.substeps;
   accumulate(second.seconds, first.seconds);
   return second;
