@@ -20,7 +20,9 @@ namespace {
 // The closed box [lo, hi] (12 triangles, outward normals), appended to m.
 void add_box(TriMesh& m, const Vec3& lo, const Vec3& hi) {
   const int b = m.num_vertices();
-  for (int k = 0; k < 8; ++k) m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  for (int k = 0; k < 8; ++k) {
+    m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  }
   const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     m.faces.push_back({b + q[0], b + q[1], b + q[2]});
@@ -38,7 +40,8 @@ TriMesh floor_and_wall(double wall_x) {
 }
 
 int pairs_of(const std::vector<ContactPair>& pairs, int v) {
-  return static_cast<int>(std::count_if(pairs.begin(), pairs.end(), [&](const ContactPair& p) { return p.vertex == v; }));
+  return static_cast<int>(
+      std::count_if(pairs.begin(), pairs.end(), [&](const ContactPair& p) { return p.vertex == v; }));
 }
 
 TEST(KinematicBody, PartsAreTheConnectedComponentsOrTheGivenLabels) {
@@ -112,7 +115,8 @@ TEST(ContactCandidates, AVertexNearTwoPartsHasAPairWithEach) {
   y.segment<3>(0) = x.segment<3>(0);
   for (int v = 1; v < 4; ++v) y.segment<3>(3 * v) += Vec3(-20, 0, 5);
   ContactParams cp;
-  const std::vector<FrictionPair> f = build_friction_pairs(model, find_contact_candidates(body, y, 0.5), body, body, y, cp);
+  const std::vector<FrictionPair> f =
+      build_friction_pairs(model, find_contact_candidates(body, y, 0.5), body, body, y, cp);
   ASSERT_EQ(f.size(), 2u);
   EXPECT_EQ(f[0].part, 0);
   EXPECT_EQ(f[1].part, 1);
@@ -165,7 +169,7 @@ TEST(Contact, SheetPushedIntoTheCornerOfTwoBoxesEntersNeither) {
     for (int v = 0; v < model.num_vertices(); ++v) both_parts += pairs_of(pairs, v) == 2;
   }
   EXPECT_GT(both_parts, 0) << "no vertex was ever near both parts";
-  // The wall's side of the sheet moved with it.
+  // The wall's side of the sheet moved with it (3 mm from where it started).
   double right = -INFINITY;
   for (int v = 0; v < model.num_vertices(); ++v) right = std::max(right, st.positions_mm[3 * v]);
   EXPECT_LT(right, -2.5);

@@ -20,6 +20,15 @@ std::vector<Aabb> face_boxes(const TriMesh& mesh, const std::vector<Vec3>* end) 
   return boxes;
 }
 
+namespace {
+
+TrianglePoint closest_on_face(const TriMesh& m, int f, const Vec3& p) {
+  const auto& t = m.faces[f];
+  return closest_triangle_point(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]);
+}
+
+}  // namespace
+
 std::vector<int> mesh_component_parts(const TriMesh& mesh, int* count) {
   UnionFind uf(mesh.vertices.size());
   for (const auto& t : mesh.faces) {
@@ -69,7 +78,9 @@ KinematicBody::KinematicBody(TriMesh mesh, std::vector<int> face_parts)
     std::vector<char> used(num_parts_, 0);
     for (int l : face_parts_) used[l] = 1;
     for (int l = 0; l < num_parts_; ++l) {
-      if (!used[l]) throw InvalidInput(fmt::format("body: part {} has no face (parts are 0..{}, each used)", l, num_parts_ - 1));
+      if (!used[l]) {
+        throw InvalidInput(fmt::format("body: part {} has no face (parts are 0..{}, each used)", l, num_parts_ - 1));
+      }
     }
   }
   tree_ = AabbTree(face_boxes(mesh_));
@@ -93,8 +104,7 @@ std::optional<BodyPoint> KinematicBody::closest_point_within(const Vec3& p, doub
   double best2 = max_distance * max_distance;
   bool found = false;
   tree_.nearest(p, best2, [&](int f, double& bound2) {
-    const auto& t = mesh_.faces[f];
-    const TrianglePoint q = closest_triangle_point(p, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]);
+    const TrianglePoint q = closest_on_face(mesh_, f, p);
     const double d2 = (q.point - p).squaredNorm();
     if (d2 < bound2 || (d2 == bound2 && (!found || f < best.face))) {
       bound2 = d2;
@@ -118,8 +128,7 @@ std::vector<BodyPoint> KinematicBody::closest_points_per_part_within(const Vec3&
   // is kept in a short list, sorted by part at the end.
   const double limit2 = max_distance * max_distance;
   tree_.nearest(p, limit2, [&](int f, double&) {
-    const auto& t = mesh_.faces[f];
-    const TrianglePoint q = closest_triangle_point(p, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]);
+    const TrianglePoint q = closest_on_face(mesh_, f, p);
     const double d2 = (q.point - p).squaredNorm();
     if (d2 > limit2) return;
     const int part = face_parts_[f];
@@ -142,8 +151,7 @@ std::optional<BodyPoint> KinematicBody::closest_point_of_part_within(const Vec3&
   bool found = false;
   tree_.nearest(p, max_distance * max_distance, [&](int f, double& bound2) {
     if (face_parts_[f] != part) return;
-    const auto& t = mesh_.faces[f];
-    const TrianglePoint q = closest_triangle_point(p, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]);
+    const TrianglePoint q = closest_on_face(mesh_, f, p);
     const double d2 = (q.point - p).squaredNorm();
     if (d2 < bound2 || (d2 == bound2 && (!found || f < best.face))) {
       bound2 = d2;
