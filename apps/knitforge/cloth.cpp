@@ -256,6 +256,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
                    {"time_s", f.time_s},
                    {"newton_iterations", f.newton_iterations},
                    {"converged", f.converged},
+                   {"solves_at_iteration_limit", f.solves_at_iteration_limit},
                    {"steps", f.steps},
                    {"contacts", f.contacts},
                    {"touching", f.touching},
@@ -306,8 +307,11 @@ void add_cloth_command(CLI::App& app, Action& action) {
         const Camera cam = frame_points(points, 800.0 / 560.0, false, Vec3(0.3, -1.0, 0.45), Vec3::UnitZ());
         write_png(out("last_frame.png"), rasterize(scene, cam, ro));
       }
-      int unconverged = 0;
-      for (const ClothFrame& f : r.frames) unconverged += f.converged ? 0 : 1;
+      int unconverged = 0, at_limit = 0;
+      for (const ClothFrame& f : r.frames) {
+        unconverged += f.converged ? 0 : 1;
+        at_limit += f.solves_at_iteration_limit > 0 ? 1 : 0;
+      }
       json summary;
       summary["command"] = "cloth";
       summary["scene"] = cloth_scene_to_json(scene);
@@ -326,6 +330,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            }()}};
       summary["result"] = {{"converged", r.converged},
                            {"frames_not_converged", unconverged},
+                           {"frames_at_iteration_limit", at_limit},
                            {"newton_iterations", r.newton_iterations},
                            {"steps", r.steps},
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
@@ -377,7 +382,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
       note(fmt::format("{} frames, {} steps, {} Newton iterations{}; closest distance to the body {:.3g} mm; "
                        "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
                        co.frames, r.steps, r.newton_iterations,
-                       unconverged ? fmt::format(" ({} frames with an unconverged solve)", unconverged) : "",
+                       unconverged ? fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
+                                                 unconverged, at_limit)
+                                   : "",
                        r.min_distance_mm, stress_top, sliding_top, all.seconds(), o->outdir));
       return 0;
     };

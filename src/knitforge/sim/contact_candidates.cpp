@@ -12,8 +12,9 @@ std::vector<ContactPair> find_contact_candidates(const KinematicBody& body, cons
     if (!skip.empty() && skip[v]) continue;
     const Vec3 p = x.segment<3>(3 * v);
     if (reach.distance2(p) > 0) continue;
-    const auto q = body.closest_point_within(p, dhat_mm);
-    if (q && q->distance2 < dhat_mm * dhat_mm) pairs.push_back({v, *q});
+    for (const BodyPoint& q : body.closest_points_per_part_within(p, dhat_mm)) {
+      if (q.distance2 < dhat_mm * dhat_mm) pairs.push_back({v, q});
+    }
   }
   return pairs;
 }

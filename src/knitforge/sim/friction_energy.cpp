@@ -16,6 +16,7 @@ std::vector<FrictionPair> build_friction_pairs(const SimModel& model, const std:
     FrictionPair f;
     f.vertex = c.vertex;
     f.face = c.body.face;
+    f.part = c.body.part;
     f.bary = c.body.where.bary;
     f.normal_force_mn = b.normal_force_mn;
     Vec3 n = x - c.body.where.point;

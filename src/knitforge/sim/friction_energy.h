@@ -16,6 +16,11 @@
 /// ramps smoothly to zero (static friction becomes creep slower than ε_v).
 /// The Hessian μ λ T [F''(y) ûûᵀ + F'(y)/y (I - ûûᵀ)] Tᵀ is positive
 /// semi-definite everywhere (no projection needed).
+///
+/// Every contact pair (one per vertex and body part, contact_candidates.h)
+/// is a friction pair of its own, with its own λ, frozen point and body
+/// motion: a vertex in the crook of an elbow is dragged by the forearm's
+/// pair and held by the upper arm's, each by its own normal force.
 
 #include <vector>
 
@@ -28,6 +33,7 @@ namespace knitforge {
 struct FrictionPair {
   int vertex = -1;
   int face = -1;
+  int part = 0;  ///< the body part of the frozen point
   Vec3 bary = Vec3::Zero();
   Eigen::Matrix<double, 3, 2> tangent = Eigen::Matrix<double, 3, 2>::Zero();
   double normal_force_mn = 0.0;  ///< λ

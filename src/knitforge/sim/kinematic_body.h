@@ -6,6 +6,14 @@
 /// refit when the body moves (geometry/aabb_tree.h). The mesh need not be
 /// closed: distances are unsigned, and the contact barrier with
 /// collision-free steps keeps every fabric vertex on the side it starts on.
+///
+/// **Parts.** The body is made of parts (the two capsules of the built-in
+/// arm; a torso and upper arms; ...), one label per face: given by whoever
+/// made the mesh, or by default its connected components (faces sharing a
+/// vertex), so a plain OBJ of one closed surface is one part. Contact is per
+/// part (contact_candidates.h): a fabric vertex within d̂ of two parts (the
+/// crook of an elbow, an armpit) is pushed away from both, not only from
+/// the closer one.
 
 #include <optional>
 #include <vector>
@@ -19,6 +27,7 @@ namespace knitforge {
 /// The closest point of the body to a query point.
 struct BodyPoint {
   int face = -1;
+  int part = 0;               ///< the face's part
   TrianglePoint where;        ///< closest point, barycentrics, region
   double distance2 = 0.0;     ///< squared distance to the query (mm²)
 };
@@ -26,9 +35,13 @@ struct BodyPoint {
 class KinematicBody {
  public:
   KinematicBody() = default;
+  /// `face_parts`: empty (the parts are the mesh's connected components,
+  /// numbered in the order of their smallest face), or one part label per
+  /// face in 0..P-1, each label used.
   /// \throw InvalidInput for a mesh without faces, bad indices or non-finite
-  ///        vertices (naming them).
-  explicit KinematicBody(TriMesh mesh);
+  ///        vertices, a wrong number of labels or a label out of range or
+  ///        unused (naming them).
+  explicit KinematicBody(TriMesh mesh, std::vector<int> face_parts = {});
 
   /// Moves the body's vertices (same count) and refits the tree.
   /// \throw InvalidInput for a wrong count or non-finite positions.
@@ -38,8 +51,20 @@ class KinematicBody {
   bool empty() const { return mesh_.faces.empty(); }
   const AabbTree& tree() const { return tree_; }
 
-  /// The closest body point to p if it is within max_distance (mm).
+  /// Number of parts (>= 1), and the part of each face.
+  int num_parts() const { return num_parts_; }
+  int face_part(int face) const { return face_parts_[face]; }
+  const std::vector<int>& face_parts() const { return face_parts_; }
+
+  /// The closest body point to p if it is within max_distance (mm); on equal
+  /// distances the lowest face.
   std::optional<BodyPoint> closest_point_within(const Vec3& p, double max_distance) const;
+  /// The closest point of each part that comes within max_distance of p
+  /// (mm), in part order: one entry per such part (ties as above). For a
+  /// one-part body, closest_point_within() as a list.
+  std::vector<BodyPoint> closest_points_per_part_within(const Vec3& p, double max_distance) const;
+  /// The closest point of part `part` to p if it is within max_distance.
+  std::optional<BodyPoint> closest_point_of_part_within(const Vec3& p, int part, double max_distance) const;
   /// The point of `face` with barycentrics `bary` (mm).
   Vec3 point(int face, const Vec3& bary) const;
   /// Unit normal of `face` (zero when degenerate).
@@ -48,7 +73,14 @@ class KinematicBody {
  private:
   TriMesh mesh_;
   AabbTree tree_;
+  std::vector<int> face_parts_;
+  int num_parts_ = 1;
 };
+
+/// Part labels of the connected components of a mesh (faces sharing a
+/// vertex), numbered in the order of each component's smallest face; writes
+/// the count to *count when given.
+std::vector<int> mesh_component_parts(const TriMesh& mesh, int* count = nullptr);
 
 /// The face boxes of a mesh at positions `vertices` (merged with those at
 /// `vertices_end` when given: swept boxes of a moving mesh).

@@ -63,6 +63,11 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
   if (!(options.max_iterations >= 0 && options.force_tolerance_mn > 0 && options.max_line_search_steps > 0)) {
     throw InvalidInput("Newton: max_iterations >= 0, force_tolerance_mn > 0 and max_line_search_steps > 0 needed");
   }
+  if (!(options.max_step_growth >= 1 && options.max_step_growth <= 1024 &&
+        std::exp2(std::round(std::log2(options.max_step_growth))) == options.max_step_growth)) {
+    throw InvalidInput(fmt::format("Newton: max_step_growth {} must be a power of two in [1, 1024]",
+                                   options.max_step_growth));
+  }
   NewtonResult res;
   res.x = x0;
   double mu = 0.0;
@@ -135,16 +140,38 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
       double alpha = alpha_max;
       bool accepted = false;
       Eigen::VectorXd trial;
+      double e_trial = ev.value;
       for (int ls = 0; ls < options.max_line_search_steps && alpha > 0; ++ls) {
         trial = res.x + alpha * p;
-        const double e = evaluate(trial, Derivatives::Value).value;
-        if (std::isfinite(e) && e <= ev.value + options.armijo * alpha * slope) {
+        e_trial = evaluate(trial, Derivatives::Value).value;
+        if (std::isfinite(e_trial) && e_trial <= ev.value + options.armijo * alpha * slope) {
           accepted = true;
           break;
         }
         alpha *= 0.5;
       }
       res.seconds.line_search += t.seconds();
+      if (accepted && alpha == 1.0 && options.max_step_growth > 1) {
+        // Step growth: the full step was accepted at once; go on while the
+        // energy keeps falling by more than its round-off.
+        t.reset();
+        const double growth = options.max_step_growth;
+        const double alpha_cap = growth * std::clamp(max_step(res.x, res.x + growth * p), 0.0, 1.0);
+        res.seconds.max_step += t.seconds();
+        t.reset();
+        bool grown = false;
+        for (double a = 2.0; a <= alpha_cap; a *= 2.0) {
+          Eigen::VectorXd bigger = res.x + a * p;
+          const double e = evaluate(bigger, Derivatives::Value).value;
+          if (!(std::isfinite(e) && e < e_trial - 1e-12 * std::abs(e_trial))) break;
+          trial = std::move(bigger);
+          e_trial = e;
+          alpha = a;
+          grown = true;
+        }
+        if (grown) ++res.grown_steps;
+        res.seconds.line_search += t.seconds();
+      }
       // Round-off: the predicted decrease is below the energy's resolution.
       const double resolution = 1e-14 * (std::abs(ev.value) + 1e-300);
       if (!accepted) {

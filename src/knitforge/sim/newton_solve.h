@@ -11,6 +11,17 @@
 /// factorisation fails or the step is poor), limits the step to the
 /// collision-free fraction max_step(x, x + p) (at most 1) and backtracks
 /// (halving) until the Armijo condition E(x + αp) <= E(x) + 10⁻⁴ α gᵀp holds.
+/// When the first trial is the full Newton step (not cut by the collision-
+/// free limit) and is accepted, the step may be too short: a barrier's
+/// curvature falls as a vertex moves away from the body, and a projected
+/// (Clamp) Hessian overestimates the curvature of compressed fabric, so
+/// Newton's model stops short. **Step growth** then tries α = 2, 4, ... up
+/// to max_step_growth (64) times the Newton step, each within the
+/// collision-free limit max_step(x, x + max_step_growth p), and keeps the
+/// largest α up to the first that does not lower the energy by more than
+/// its round-off (10⁻¹² |E|): a decrease at the level of round-off is not
+/// taken for progress. Each trial costs one energy value (no
+/// factorisation). max_step_growth = 1 switches it off.
 /// Fixed unknowns (pins) keep their values: their rows and columns are
 /// replaced by the identity and their gradient entries ignored.
 ///
@@ -39,6 +50,9 @@ struct NewtonOptions {
   double force_tolerance_mn = 1e-6;
   int max_line_search_steps = 40;  ///< halvings at most per iteration
   double armijo = 1e-4;
+  /// Step growth (see the file comment): the largest multiple of an
+  /// accepted full Newton step tried, a power of two >= 1 (1 = off).
+  double max_step_growth = 64.0;
 };
 
 /// Wall-clock seconds per part of the solve.
@@ -54,6 +68,7 @@ struct NewtonResult {
   bool converged = false;
   int iterations = 0;        ///< Newton steps taken
   int factorizations = 0;    ///< Cholesky factorisations attempted (failed ones raise the shift)
+  int grown_steps = 0;       ///< iterations whose step was grown past the Newton step
   double energy = 0.0;       ///< at x (µJ)
   double max_force_mn = 0.0; ///< largest free vertex force at x (mN)
   /// Energy before each iteration and at the end.

@@ -204,6 +204,7 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
       if (!body_frames.empty()) body.move_to(pose);
       fr.newton_iterations += r.newton_iterations;
       fr.converged = fr.converged && r.converged;
+      fr.solves_at_iteration_limit += r.solves_at_iteration_limit;
       fr.steps += r.substeps;
       fr.contacts = r.contacts;
       fr.max_force_mn = r.max_force_mn;

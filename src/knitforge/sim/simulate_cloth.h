@@ -70,6 +70,7 @@ struct ClothFrame {
   double elastic_energy_uj = 0.0, kinetic_energy_uj = 0.0, gravity_energy_uj = 0.0;
   int newton_iterations = 0;
   bool converged = true;
+  int solves_at_iteration_limit = 0;  ///< Newton solves of the frame that hit the iteration limit
   int steps = 0;  ///< backward-Euler steps (substeps, more when split)
   int contacts = 0;
   double max_force_mn = 0.0;  ///< largest residual force of the frame's last solve

@@ -107,9 +107,10 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
       friction = build_friction_pairs(model, c, fi == 0 ? body : end_body, end_body, lag, o.contact);
       if (fi > 0) {
         for (FrictionPair& f : friction) f.body_motion = Vec3::Zero();
-        // Lagged at the end pose: the body's motion over the step is that of the frozen point.
+        // Lagged at the end pose: the body's motion over the step is that of
+        // the point of the pair's own part closest to the vertex at the start.
         for (FrictionPair& f : friction) {
-          const auto q = body.closest_point_within(xn.segment<3>(3 * f.vertex), dhat + 2 * body_speed);
+          const auto q = body.closest_point_of_part_within(xn.segment<3>(3 * f.vertex), f.part, dhat + 2 * body_speed);
           if (q) f.body_motion = end_body.point(q->face, q->where.bary) - q->where.point;
         }
       }
@@ -133,6 +134,7 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
     x = r.x;
     out.converged = out.converged && r.converged;
     out.newton_iterations += r.iterations;
+    out.solves_at_iteration_limit += r.stop_reason == "iteration limit" ? 1 : 0;
     out.max_force_mn = r.max_force_mn;
     accumulate(out.seconds, r.seconds);
   }
@@ -171,6 +173,7 @@ StepResult step_recursive(SimWorkspace& ws, const SimState& state, const Kinemat
   StepResult second = step_recursive(ws, first.state, mid, body_end, pin_targets, o, 0.5 * h, depth + 1);
   second.converged = second.converged && first.converged;
   second.newton_iterations += first.newton_iterations;
+  second.solves_at_iteration_limit += first.solves_at_iteration_limit;
   second.substeps += first.substeps;
   accumulate(second.seconds, first.seconds);
   return second;

@@ -77,6 +77,8 @@ struct StepResult {
   SimState state;
   bool converged = false;   ///< every Newton solve of the step converged
   int newton_iterations = 0;
+  /// Newton solves of the step that stopped at NewtonOptions::max_iterations.
+  int solves_at_iteration_limit = 0;
   int substeps = 1;         ///< 1, or more when the body's motion split the step
   int contacts = 0;         ///< contact pairs at the end
   double min_distance_mm = 0.0;  ///< smallest vertex-body distance at the end (+inf: none near)
