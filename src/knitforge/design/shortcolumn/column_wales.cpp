@@ -412,39 +412,51 @@ double polyline_length(const std::vector<Vec3>& pl) {
 
 /// The samples of the new wale `pl` (the arc's positions, its ends moved to
 /// the fork samples) of length `len`: equal segments, segment_count() of
-/// them; an arc joined along the rim is resampled piece by piece (the
+/// them. An arc joined along the rim is resampled piece by piece (the
 /// isocurve pieces and the rim stretches between them, an even number of
 /// segments each, at least 2), so that where it leaves and rejoins the rim
-/// are samples of even label, the ends of the front pieces it leaves
-/// (Arc::on_rim marks the samples strictly inside a rim stretch).
-std::vector<Vec3> resample_wale(const std::vector<Vec3>& pl, double len, double sh, Arc& a) {
+/// are samples of even label, the ends of the front pieces it leaves; when
+/// that gives more than twice the segments of the old front it faces
+/// (`na`; tessellate_strip() covers no more), it is resampled evenly into at
+/// most 2 na. Arc::on_rim marks the samples strictly inside a rim stretch.
+std::vector<Vec3> resample_wale(const std::vector<Vec3>& pl, double len, double sh, int na, Arc& a) {
   a.on_rim.clear();
-  if (a.rim_gaps.empty()) {
-    const ResampledPolyline rs = resample_polyline(pl, len / segment_count(len, sh, a), ResampleOptions{false});
-    a.on_rim.assign(rs.points.size(), 0);
-    return rs.points;
-  }
-  std::vector<Vec3> pts{pl.front()};
-  a.on_rim.push_back(0);
-  auto part = [&](int i0, int i1, bool rim) {
-    const std::vector<Vec3> piece(pl.begin() + i0, pl.begin() + i1 + 1);
-    const double l = polyline_length(piece);
-    if (piece.size() < 2 || !(l > 0.0)) return;
-    const int n = 2 * std::max(1, static_cast<int>(std::lround(l / (2.0 * sh))));
-    const ResampledPolyline rs = resample_polyline(piece, l / n, ResampleOptions{false});
-    for (size_t k = 1; k < rs.points.size(); ++k) {
-      pts.push_back(rs.points[k]);
-      a.on_rim.push_back(rim && k + 1 < rs.points.size() ? 1 : 0);
+  if (!a.rim_gaps.empty()) {
+    std::vector<Vec3> pts{pl.front()};
+    std::vector<char> rim_flags{0};
+    auto part = [&](int i0, int i1, bool rim) {
+      const std::vector<Vec3> piece(pl.begin() + i0, pl.begin() + i1 + 1);
+      const double l = polyline_length(piece);
+      if (piece.size() < 2 || !(l > 0.0)) return;
+      const int n = 2 * std::max(1, static_cast<int>(std::lround(l / (2.0 * sh))));
+      const ResampledPolyline rs = resample_polyline(piece, l / n, ResampleOptions{false});
+      for (size_t k = 1; k < rs.points.size(); ++k) {
+        pts.push_back(rs.points[k]);
+        rim_flags.push_back(rim && k + 1 < rs.points.size() ? 1 : 0);
+      }
+    };
+    int from = 0;
+    for (const auto& [g0, g1] : a.rim_gaps) {
+      part(from, g0, false);
+      part(g0, g1, true);
+      from = g1;
     }
-  };
-  int from = 0;
-  for (const auto& [g0, g1] : a.rim_gaps) {
-    part(from, g0, false);
-    part(g0, g1, true);
-    from = g1;
+    part(from, static_cast<int>(pl.size()) - 1, false);
+    if (na < 0 || static_cast<int>(pts.size()) - 1 <= 2 * na) {
+      a.on_rim = std::move(rim_flags);
+      return pts;
+    }
   }
-  part(from, static_cast<int>(pl.size()) - 1, false);
-  return pts;
+  int n = segment_count(len, sh, a);
+  if (na >= 1 && !a.rim_gaps.empty()) n = std::min(n, 2 * na);
+  const ResampledPolyline rs = resample_polyline(pl, len / n, ResampleOptions{false});
+  for (size_t k = 0; k < rs.points.size(); ++k) {
+    const int seg = rs.segment[k];
+    bool rim = false;
+    for (const auto& [g0, g1] : a.rim_gaps) rim = rim || (seg >= g0 && seg < g1);
+    a.on_rim.push_back(rim ? 1 : 0);
+  }
+  return rs.points;
 }
 
 /// The last strip of a region narrower than a stitch width: between the
@@ -848,7 +860,7 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
           a.p = a.q = -1;
           continue;
         }
-        const std::vector<Vec3> pts = resample_wale(pl, len, sh, a);
+        const std::vector<Vec3> pts = resample_wale(pl, len, sh, a.p >= 0 ? a.q - a.p : -1, a);
         const int m = static_cast<int>(pts.size()) - 1;
         const int base_parity = a.p >= 0 ? out.parity[static_cast<size_t>(S[a.p])] : 0;
         for (int k = 0; k <= m; ++k) {
