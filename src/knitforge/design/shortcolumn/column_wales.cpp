@@ -754,11 +754,22 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       // that every strip's first course runs left to right as the operators
       // of tessellate_strip() assume.
       auto even = [&](int k) { return out.parity[static_cast<size_t>(S[k])] == 0; };
+      // An isocurve piece shorter than half a stitch height (the level d = sw
+      // passing around a single vertex of the front that sticks out, or
+      // clipping a corner) holds no wale: it cuts the region, owns no front
+      // sample (it would break the run of samples facing the real wale
+      // there) and makes neither a strip nor a front piece.
+      std::vector<char> tiny(arcs.size(), 0);
+      for (size_t j = 0; j < arcs.size(); ++j) {
+        tiny[j] = polyline_length(arcs[j].pos) < 0.5 * sh ? 1 : 0;
+        if (tiny[j]) ++out.tiny_arcs;
+      }
       std::vector<int> owner(static_cast<size_t>(ns), -1);  // even samples: nearest arc
       for (int k = 0; k < ns; ++k) {
         if (!even(k)) continue;
         double best = kInf;
         for (size_t j = 0; j < arcs.size(); ++j) {
+          if (tiny[j]) continue;
           const double dd = polyline_distance(arcs[j].pos, out.samples[static_cast<size_t>(S[k])]);
           if (dd < best) best = dd, owner[static_cast<size_t>(k)] = static_cast<int>(j);
         }
@@ -775,7 +786,7 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       };
       for (size_t j = 0; j < arcs.size(); ++j) {
         Arc& a = arcs[j];
-        if (ns < 3) {  // nothing on the left to fork from
+        if (ns < 3 || tiny[j]) {  // nothing on the left to fork from, or no wale
           a.start_front = a.end_front = false;
           continue;
         }
@@ -856,7 +867,7 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         if (a.start_front) pl.front() = out.samples[static_cast<size_t>(S[a.p])];
         if (a.end_front) pl.back() = out.samples[static_cast<size_t>(S[a.q])];
         const double len = polyline_length(pl);
-        if (!(len > 0.0)) {
+        if (!(len > 0.0) || tiny[j]) {
           a.p = a.q = -1;
           continue;
         }
