@@ -43,6 +43,34 @@ TEST(DesignShortColumns, HemisphereFromPointToPointIsKnittableWithFewTransfers) 
   EXPECT_EQ(again.map.cells.size(), d.map.cells.size());
 }
 
+TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
+  // Two random b of the Fig. 3.16 experiment (example_06) whose designs
+  // were not knittable: fronts reach the rim, the isocurve d = sw leaves the
+  // surface and comes back; joined along the rim they are knittable, not
+  // joined the knitting order misses stitches.
+  const TriMesh surface = hemisphere();
+  {
+    const HarmonicField h = harmonic_field(surface, {0.329, 0.520, 0.654, 1.251});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_GT(d.wales.joined_arcs, 0);
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+    ShortColumnOptions apart = options();
+    apart.wales.join_along_boundary = false;
+    const ShortColumnDesign a = design_short_columns(surface, h.value, apart);
+    EXPECT_FALSE(a.mesh_check.ok() && a.map_check.ok()) << "not joined: stitches the knitting order never reaches";
+  }
+  {
+    // Here an isocurve piece of 0.06 mm around one front vertex took front
+    // samples from the short wale beside it, which left them without stitches.
+    const HarmonicField h = harmonic_field(surface, {0.650, 0.945, 1.281, 1.394});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_GT(d.wales.tiny_arcs, 0);
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  }
+}
+
 TEST(DesignShortColumns, SpreadingFieldIsKnitWithShortColumns) {
   // f = angle on a quarter annulus: the wales fan out, short columns start
   // (increases) and the design stays knittable.
