@@ -426,6 +426,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
       counts["moved_forks"] = d.wales.moved_forks;
       counts["joined_boundary_arcs"] = d.wales.joined_arcs;
       counts["tiny_arcs"] = d.wales.tiny_arcs;
+      counts["sampleless_regions"] = d.wales.sampleless_regions;
       counts["pinched_vertices"] = d.wales.pinched_vertices;
       counts["split_vertices"] = d.split_vertices;
       counts["last_strips"] = d.wales.last_strips;

@@ -44,7 +44,7 @@ TEST(DesignShortColumns, HemisphereFromPointToPointIsKnittableWithFewTransfers) 
 }
 
 TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
-  // Two random b of the Fig. 3.16 experiment (example_06) whose designs
+  // Three random b of the Fig. 3.16 experiment (example_06) whose designs
   // were not knittable: fronts reach the rim, the isocurve d = sw leaves the
   // surface and comes back; joined along the rim they are knittable, not
   // joined the knitting order misses stitches.
@@ -68,6 +68,18 @@ TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
     EXPECT_GT(d.wales.tiny_arcs, 0);
     EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
     EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  }
+  {
+    // Here a front piece whose samples mostly lie on its region's front (a
+    // few off it, beside a fork) was dropped by a mean-distance rule: the
+    // region advanced with no samples, its strips unreachable (or, left
+    // uncovered, a hole of 540 mm^2).
+    const HarmonicField h = harmonic_field(surface, {0.562, 0.848, 0.855, 0.923});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+    EXPECT_EQ(d.wales.sampleless_regions, 0);
+    EXPECT_LT(d.wales.uncovered_area, 50.0);
   }
 }
 

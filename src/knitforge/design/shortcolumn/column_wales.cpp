@@ -634,6 +634,14 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         out.uncovered_area += total_area(R.mesh);
         break;
       }
+      if (out.steps > 0 && R.samples.size() < 3) {
+        // A front without stitch samples (its piece was dropped): wales
+        // advanced from it would have nothing on their left, strips of
+        // their own that no course of the fabric reaches. Left uncovered.
+        out.uncovered_area += total_area(R.mesh);
+        ++out.sampleless_regions;
+        break;
+      }
       if (out.steps >= max_steps)
         throw SolverError(fmt::format("short-column wales: more than {} advances; the field or the stitch size is "
                                       "unsuitable (the fronts do not leave the surface)",
@@ -1073,18 +1081,20 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         chains[c] = front_chain(next[c], hc);
         chain_s[c] = chain_params(next[c].mesh, chains[c]);
       }
+      // A piece goes to the region whose front chain its samples lie on:
+      // the median distance (a few samples off the chain, e.g. the old front
+      // next to a fork inside the removed disk, must not lose the piece; its
+      // region would be left without samples).
       for (const std::vector<int>& piece : pieces) {
         int best = -1;
         double bd = kInf;
         for (size_t c = 0; c < next.size(); ++c) {
           if (chains[c].empty()) continue;
-          double sum = 0.0;
-          for (int id : piece) {
-            double dist = 0.0;
-            project_on_chain(next[c].mesh, chains[c], chain_s[c], out.samples[static_cast<size_t>(id)], &dist);
-            sum += dist;
-          }
-          if (sum / piece.size() < bd) bd = sum / piece.size(), best = static_cast<int>(c);
+          std::vector<double> dist(piece.size(), 0.0);
+          for (size_t k = 0; k < piece.size(); ++k)
+            project_on_chain(next[c].mesh, chains[c], chain_s[c], out.samples[static_cast<size_t>(piece[k])], &dist[k]);
+          std::nth_element(dist.begin(), dist.begin() + static_cast<long>(dist.size() / 2), dist.end());
+          if (dist[dist.size() / 2] < bd) bd = dist[dist.size() / 2], best = static_cast<int>(c);
         }
         if (best < 0 || bd > 0.5 * sw || piece.size() < 3) {
           ++out.dropped_pieces;

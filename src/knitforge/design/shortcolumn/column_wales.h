@@ -142,6 +142,9 @@ struct ColumnWales {
   int joined_arcs = 0;
   /// Isocurve pieces shorter than sh / 2 that only cut the region (no wale).
   int tiny_arcs = 0;
+  /// Regions whose front has no stitch samples (its piece dropped), left
+  /// uncovered (their area is in uncovered_area).
+  int sampleless_regions = 0;
   int band_growths = 0;    ///< band radius doublings
   int pinched_vertices = 0; ///< vertices split where the remaining region touched itself (split_nonmanifold_vertices.h)
   int last_strips = 0;          ///< regions closed by a last strip to the surface boundary
