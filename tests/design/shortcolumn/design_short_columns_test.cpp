@@ -44,7 +44,7 @@ TEST(DesignShortColumns, HemisphereFromPointToPointIsKnittableWithFewTransfers) 
 }
 
 TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
-  // Three random b of the Fig. 3.16 experiment (example_06) whose designs
+  // Four random b of the Fig. 3.16 experiment (example_06) whose designs
   // were not knittable: fronts reach the rim, the isocurve d = sw leaves the
   // surface and comes back; joined along the rim they are knittable, not
   // joined the knitting order misses stitches.
@@ -80,6 +80,16 @@ TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
     EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
     EXPECT_EQ(d.wales.sampleless_regions, 0);
     EXPECT_LT(d.wales.uncovered_area, 50.0);
+  }
+  {
+    // Here an isocurve piece of 3.3 mm that could get no strip owned the
+    // front samples beside it: the wale next to it (from a fork to the rim)
+    // took only part of the front it faces, and 534 stitches were never
+    // reached.
+    const HarmonicField h = harmonic_field(surface, {0.411629, 0.581824, 0.609492, 0.836326});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
   }
 }
 

@@ -6,6 +6,7 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -772,79 +773,99 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         tiny[j] = polyline_length(arcs[j].pos) < 0.5 * sh ? 1 : 0;
         if (tiny[j]) ++out.tiny_arcs;
       }
-      std::vector<int> owner(static_cast<size_t>(ns), -1);  // even samples: nearest arc
-      for (int k = 0; k < ns; ++k) {
-        if (!even(k)) continue;
-        double best = kInf;
+      // Each even sample of the old front belongs to its nearest arc, and an
+      // arc's strip takes its longest run of samples. An arc that gets no
+      // strip (too few samples, no fork possible) owns none either: its
+      // samples go to the arcs beside it, and the ranges are found again.
+      std::vector<char> no_strip = tiny;
+      std::vector<std::pair<bool, bool>> ends(arcs.size());
+      for (size_t j = 0; j < arcs.size(); ++j) ends[j] = {arcs[j].start_front, arcs[j].end_front};
+      const int moved_before = out.moved_forks;
+      for (bool again = true; again;) {
+        again = false;
+        out.moved_forks = moved_before;
         for (size_t j = 0; j < arcs.size(); ++j) {
-          if (tiny[j]) continue;
-          const double dd = polyline_distance(arcs[j].pos, out.samples[static_cast<size_t>(S[k])]);
-          if (dd < best) best = dd, owner[static_cast<size_t>(k)] = static_cast<int>(j);
+          std::tie(arcs[j].start_front, arcs[j].end_front) = ends[j];
+          arcs[j].p = arcs[j].q = -1;
         }
-      }
-      auto snap = [&](double s, const std::vector<char>& taken) {
-        int best = -1;
-        double bd = kInf;
-        for (int k = 1; k + 1 < ns; ++k) {
-          if (!even(k) || taken[static_cast<size_t>(S[k])] || !inside[static_cast<size_t>(S[k])]) continue;
-          const double dd = std::abs(sp[static_cast<size_t>(k)] - s);
-          if (dd < bd) bd = dd, best = k;
-        }
-        return best;
-      };
-      for (size_t j = 0; j < arcs.size(); ++j) {
-        Arc& a = arcs[j];
-        if (ns < 3 || tiny[j]) {  // nothing on the left to fork from, or no wale
-          a.start_front = a.end_front = false;
-          continue;
-        }
-        int lo = -1, hi = -1, run_lo = -1, best_len = 0;  // longest run of owned even samples
+        std::vector<int> owner(static_cast<size_t>(ns), -1);  // even samples: nearest arc
         for (int k = 0; k < ns; ++k) {
           if (!even(k)) continue;
-          if (owner[static_cast<size_t>(k)] == static_cast<int>(j)) {
-            if (run_lo < 0) run_lo = k;
-            if (k - run_lo + 1 > best_len) best_len = k - run_lo + 1, lo = run_lo, hi = k;
-          } else {
-            run_lo = -1;
+          double best = kInf;
+          for (size_t j = 0; j < arcs.size(); ++j) {
+            if (no_strip[j]) continue;
+            const double dd = polyline_distance(arcs[j].pos, out.samples[static_cast<size_t>(S[k])]);
+            if (dd < best) best = dd, owner[static_cast<size_t>(k)] = static_cast<int>(j);
           }
         }
-        if (a.start_front) {
-          int k = snap(a.s_start, increase_apex);
-          const int k0 = snap(a.s_start, std::vector<char>(out.samples.size(), 0));
-          if (k >= 0 && k != k0) ++out.moved_forks;
-          if (k < 0) a.start_front = false;
-          else lo = k;
-        }
-        if (a.end_front) {
-          int k = snap(a.s_end, decrease_apex);
-          const int k0 = snap(a.s_end, std::vector<char>(out.samples.size(), 0));
-          if (k >= 0 && k != k0) ++out.moved_forks;
-          if (k < 0) a.end_front = false;
-          else hi = k;
-        }
-        int first_even = 0, last_even = ns - 1;
-        while (first_even < ns && !even(first_even)) ++first_even;
-        while (last_even >= 0 && !even(last_even)) --last_even;
-        if (!a.start_front && a.end_front && lo < 0) lo = first_even;
-        if (a.start_front && !a.end_front && hi < 0) hi = last_even;
-        // A short column with both ends at forks needs 4 segments on the old
-        // front (2 when it is a single stitch pair): the fork operators of
-        // tessellate_strip() start and end with a quad each.
-        if (a.start_front && a.end_front && lo >= 0 && hi >= 0 && hi - lo == 2) {
-          auto joinable = [&](int k) {
-            return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !decrease_apex[static_cast<size_t>(S[k])];
-          };
-          auto forkable = [&](int k) {
-            return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !increase_apex[static_cast<size_t>(S[k])];
-          };
-          if (joinable(hi + 2)) hi += 2;
-          else if (forkable(lo - 2)) lo -= 2;
-        }
-        if (lo >= 0 && hi >= 0 && hi - lo >= 2) {
-          a.p = lo;
-          a.q = hi;
-        } else {
-          a.start_front = a.end_front = false;
+        auto snap = [&](double s, const std::vector<char>& taken) {
+          int best = -1;
+          double bd = kInf;
+          for (int k = 1; k + 1 < ns; ++k) {
+            if (!even(k) || taken[static_cast<size_t>(S[k])] || !inside[static_cast<size_t>(S[k])]) continue;
+            const double dd = std::abs(sp[static_cast<size_t>(k)] - s);
+            if (dd < bd) bd = dd, best = k;
+          }
+          return best;
+        };
+        for (size_t j = 0; j < arcs.size(); ++j) {
+          Arc& a = arcs[j];
+          if (ns < 3 || tiny[j]) {  // nothing on the left to fork from, or no wale
+            a.start_front = a.end_front = false;
+            continue;
+          }
+          int lo = -1, hi = -1, run_lo = -1, best_len = 0;  // longest run of owned even samples
+          for (int k = 0; k < ns; ++k) {
+            if (!even(k)) continue;
+            if (owner[static_cast<size_t>(k)] == static_cast<int>(j)) {
+              if (run_lo < 0) run_lo = k;
+              if (k - run_lo + 1 > best_len) best_len = k - run_lo + 1, lo = run_lo, hi = k;
+            } else {
+              run_lo = -1;
+            }
+          }
+          if (a.start_front) {
+            int k = snap(a.s_start, increase_apex);
+            const int k0 = snap(a.s_start, std::vector<char>(out.samples.size(), 0));
+            if (k >= 0 && k != k0) ++out.moved_forks;
+            if (k < 0) a.start_front = false;
+            else lo = k;
+          }
+          if (a.end_front) {
+            int k = snap(a.s_end, decrease_apex);
+            const int k0 = snap(a.s_end, std::vector<char>(out.samples.size(), 0));
+            if (k >= 0 && k != k0) ++out.moved_forks;
+            if (k < 0) a.end_front = false;
+            else hi = k;
+          }
+          int first_even = 0, last_even = ns - 1;
+          while (first_even < ns && !even(first_even)) ++first_even;
+          while (last_even >= 0 && !even(last_even)) --last_even;
+          if (!a.start_front && a.end_front && lo < 0) lo = first_even;
+          if (a.start_front && !a.end_front && hi < 0) hi = last_even;
+          // A short column with both ends at forks needs 4 segments on the old
+          // front (2 when it is a single stitch pair): the fork operators of
+          // tessellate_strip() start and end with a quad each.
+          if (a.start_front && a.end_front && lo >= 0 && hi >= 0 && hi - lo == 2) {
+            auto joinable = [&](int k) {
+              return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !decrease_apex[static_cast<size_t>(S[k])];
+            };
+            auto forkable = [&](int k) {
+              return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !increase_apex[static_cast<size_t>(S[k])];
+            };
+            if (joinable(hi + 2)) hi += 2;
+            else if (forkable(lo - 2)) lo -= 2;
+          }
+          if (lo >= 0 && hi >= 0 && hi - lo >= 2) {
+            a.p = lo;
+            a.q = hi;
+          } else {
+            a.start_front = a.end_front = false;
+            if (!no_strip[j] && std::count(owner.begin(), owner.end(), static_cast<int>(j)) > 0) {
+              no_strip[j] = 1;
+              again = true;
+            }
+          }
         }
       }
       // Ranges of different arcs must not overlap (disjoint isocurve pieces
