@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "design/shortcolumn/test_meshes.h"
+#include "knitforge/design/shortcolumn/harmonic_field.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/util/errors.h"
 
@@ -160,6 +161,27 @@ TEST(JoinedWales, AFrontAlongTheRimGetsOneWaleAcrossTheStretchItRemoves) {
     covered += std::abs(twice) / 2.0;
   }
   EXPECT_NEAR(covered + w.uncovered_area, w.surface_area, 0.01 * w.surface_area);
+}
+
+TEST(ColumnWales, AShortColumnsWaleHasMoreThanHalfTheSegmentsOfTheFrontItReplaces) {
+  // A random b of the Fig. 3.16 experiment where a short column's old front
+  // (between its fork and its join) was 8 segments and its new wale 4: the
+  // strip had no tessellation without four stacked short-row ends.
+  const TriMesh m = hemisphere();
+  const HarmonicField h = harmonic_field(m, {0.463155, 0.527030, 1.129328, 1.163904});
+  const ColumnWales w = extract_column_wales(m, h.value, kParams);
+  expect_consistent_strips(w);
+  int short_columns = 0;
+  for (const ColumnStrip& s : w.strips) {
+    if (!(s.start_increase && s.end_decrease)) continue;
+    ++short_columns;
+    const size_t na = s.a.size() - 1, nb = s.b.size() - 1;
+    if (na == 2) continue;  // a single stitch pair: 2 opposite 2
+    EXPECT_GT(2 * nb, na) << "short column: A " << na << " segments, B " << nb;
+    EXPECT_LE(nb, 2 * na);
+    EXPECT_GE(nb, 4u);
+  }
+  EXPECT_GT(short_columns, 10);
 }
 
 TEST(ColumnWales, RejectsFieldsItCannotStartFrom) {

@@ -393,14 +393,17 @@ double polyline_distance(const std::vector<Vec3>& pl, const Vec3& p) {
 }
 
 /// Segments of a new wale of length len: the even count nearest to len / sh,
-/// at least 2; a short wale with both ends at forks takes 4 to 2 (q - p)
+/// at least 2; a short wale with both ends at forks takes 2 (q - p) at most
 /// (tessellate_strip() covers B up to twice as long as A without stacking
-/// four short-row ends), or 2 opposite a 2-segment front part.
+/// four short-row ends) and more than half of q - p, at least 4 (the old
+/// front twice as long as B needs two A-advances at one apex somewhere:
+/// four stacked short-row ends), or 2 opposite a 2-segment front part.
 int segment_count(double len, double sh, const Arc& a) {
   int n = 2 * std::max(1, static_cast<int>(std::lround(len / (2.0 * sh))));
   if (a.start_front && a.end_front && a.p >= 0) {
     const int na = a.q - a.p;
-    n = na == 2 ? 2 : std::clamp(n, 4, 2 * na);
+    const int at_least = std::max(4, 2 * (na / 4 + 1));
+    n = na == 2 ? 2 : std::clamp(n, std::min(at_least, 2 * na), 2 * na);
   }
   return n;
 }
