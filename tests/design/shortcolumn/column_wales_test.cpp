@@ -184,6 +184,19 @@ TEST(ColumnWales, AShortColumnsWaleHasMoreThanHalfTheSegmentsOfTheFrontItReplace
   EXPECT_GT(short_columns, 10);
 }
 
+TEST(ColumnWales, ANewWaleHasAtMostTwiceTheSegmentsOfTheFrontItFaces) {
+  // A random b (example_06 with N = 100) whose start interval is 8 mm: the
+  // first wale around it is about 19 mm long, 8 segments against 2, and the
+  // first strip had no tessellation (tessellate_strip() covers B up to
+  // twice A).
+  const TriMesh m = hemisphere();
+  const HarmonicField h = harmonic_field(m, {0.439573, 0.456673, 0.920743, 1.255550});
+  const ColumnWales w = extract_column_wales(m, h.value, kParams);
+  expect_consistent_strips(w);
+  ASSERT_FALSE(w.strips.empty());
+  for (const ColumnStrip& s : w.strips) EXPECT_LE(s.b.size() - 1, 2 * (s.a.size() - 1)) << "strip of column " << s.column;
+}
+
 TEST(ColumnWales, RejectsFieldsItCannotStartFrom) {
   const TriMesh m = rectangle(30.0, 20.0, 2.0);
   std::vector<double> f(static_cast<size_t>(m.num_vertices()), 0.0);

@@ -421,8 +421,10 @@ double polyline_length(const std::vector<Vec3>& pl) {
 /// segments each, at least 2), so that where it leaves and rejoins the rim
 /// are samples of even label, the ends of the front pieces it leaves; when
 /// that gives more than twice the segments of the old front it faces
-/// (`na`; tessellate_strip() covers no more), it is resampled evenly into at
-/// most 2 na. Arc::on_rim marks the samples strictly inside a rim stretch.
+/// (`na`; tessellate_strip() covers no more), it is resampled evenly. Every
+/// wale that faces an old front gets at most 2 na segments (e.g. the first
+/// wale around a short start interval). Arc::on_rim marks the samples
+/// strictly inside a rim stretch.
 std::vector<Vec3> resample_wale(const std::vector<Vec3>& pl, double len, double sh, int na, Arc& a) {
   a.on_rim.clear();
   if (!a.rim_gaps.empty()) {
@@ -452,7 +454,7 @@ std::vector<Vec3> resample_wale(const std::vector<Vec3>& pl, double len, double 
     }
   }
   int n = segment_count(len, sh, a);
-  if (na >= 1 && !a.rim_gaps.empty()) n = std::min(n, 2 * na);
+  if (na >= 1) n = std::min(n, 2 * na);
   const ResampledPolyline rs = resample_polyline(pl, len / n, ResampleOptions{false});
   for (size_t k = 0; k < rs.points.size(); ++k) {
     const int seg = rs.segment[k];
