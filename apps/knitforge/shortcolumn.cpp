@@ -309,7 +309,19 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
             continue;
           }
           if (candidates.size() > 1) note(fmt::format("design with b = ({}) ...", format_boundary_vector(candidates[k])));
-          ShortColumnDesign d = design_short_columns(surface, h.value, sopt);
+          std::optional<ShortColumnDesign> attempt;
+          try {
+            attempt = design_short_columns(surface, h.value, sopt);
+          } catch (const Error& e) {
+            // A stage that fails (e.g. a strip without a tessellation) makes
+            // this b unusable, not the run: try the next one.
+            if (k + 1 == candidates.size() && !design) throw;
+            note(fmt::format("b = ({}): {}; {}", format_boundary_vector(candidates[k]), e.what(),
+                             k + 1 < candidates.size() ? "trying the next alternative" : "keeping the best design so far"));
+            tried.push_back({{"b", bvec(candidates[k])}, {"error", e.what()}});
+            continue;
+          }
+          ShortColumnDesign& d = *attempt;
           tried.push_back({{"b", bvec(candidates[k])},
                            {"knittable", d.knittable()},
                            {"transfer_stitches", d.counts.transfers()},
@@ -412,6 +424,9 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
       counts["dropped_front_pieces"] = d.wales.dropped_pieces;
       counts["dropped_remnants"] = d.wales.dropped_remnants;
       counts["moved_forks"] = d.wales.moved_forks;
+      counts["joined_boundary_arcs"] = d.wales.joined_arcs;
+      counts["tiny_arcs"] = d.wales.tiny_arcs;
+      counts["sampleless_regions"] = d.wales.sampleless_regions;
       counts["pinched_vertices"] = d.wales.pinched_vertices;
       counts["split_vertices"] = d.split_vertices;
       counts["last_strips"] = d.wales.last_strips;

@@ -42,6 +42,10 @@ struct Trial {
   int transfers = -1;  ///< -1: no design (a stage threw)
   bool knittable = false;
   std::string failure;  ///< "" when knittable
+  int stitches = 0;
+  double stitches_vs_area = 0.0;  ///< stitches / (area / (sw sh)) - 1
+  double uncovered = 0.0;         ///< mm^2 no strip covers (ColumnWales::uncovered_area)
+  int joined = 0, tiny = 0, sampleless = 0;  ///< ColumnWales counters
 };
 
 /// The rules a report breaks, as "rule xN, rule xM".
@@ -147,6 +151,12 @@ int main(int argc, char** argv) {
       t.estimate = d.metric.transfer_estimate(opt.params.stitch_width);
       t.transfers = d.counts.transfers();
       t.knittable = d.knittable();
+      t.stitches = d.counts.stitches;
+      t.stitches_vs_area = d.counts.stitches / (d.surface_area / (opt.params.stitch_width * opt.params.stitch_height)) - 1.0;
+      t.uncovered = d.wales.uncovered_area;
+      t.joined = d.wales.joined_arcs;
+      t.tiny = d.wales.tiny_arcs;
+      t.sampleless = d.wales.sampleless_regions;
       if (!t.knittable) {
         const std::string m = broken_rules(d.map_check, "map"), s = broken_rules(d.mesh_check, "mesh");
         t.failure = m + (m.empty() || s.empty() ? "" : ", ") + s;
@@ -195,14 +205,31 @@ int main(int argc, char** argv) {
   if (!tr.empty())
     std::printf("transfers %d-%d, median %d; Pearson r = %.2f; least squares transfers = %.1f + %.2f x estimate\n",
                 tr.front(), tr.back(), tr[tr.size() / 2], r, offset, slope);
+  {
+    std::vector<double> excess, uncovered;
+    int joined = 0, tiny = 0, sampleless = 0;
+    for (const Trial& t : trials) {
+      if (t.transfers < 0) continue;
+      excess.push_back(100.0 * t.stitches_vs_area);
+      uncovered.push_back(t.uncovered);
+      joined += t.joined, tiny += t.tiny, sampleless += t.sampleless;
+    }
+    std::sort(excess.begin(), excess.end());
+    std::sort(uncovered.begin(), uncovered.end());
+    if (!excess.empty())
+      std::printf("stitches vs area: median %+.1f %% (%+.1f to %+.1f); uncovered area median %.1f mm^2, max %.1f mm^2; "
+                  "wale pieces joined along the rim %d, tiny pieces %d, regions without front samples %d\n",
+                  excess[excess.size() / 2], excess.front(), excess.back(), uncovered[uncovered.size() / 2], uncovered.back(),
+                  joined, tiny, sampleless);
+  }
 
   std::filesystem::create_directories(outdir);
   {
     std::ofstream csv(outdir + "/metric_vs_transfers.csv");
-    csv << "b0,b1,b2,b3,estimate,transfers,knittable,failure\n";
+    csv << "b0,b1,b2,b3,estimate,transfers,knittable,stitches,stitches_vs_area,uncovered_mm2,failure\n";
     for (const Trial& t : trials)
-      csv << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{},{},\"{}\"\n", t.b[0], t.b[1], t.b[2], t.b[3], t.estimate,
-                         t.transfers, t.knittable ? 1 : 0, t.failure);
+      csv << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.3f},{},{},{},{:.4f},{:.2f},\"{}\"\n", t.b[0], t.b[1], t.b[2], t.b[3],
+                         t.estimate, t.transfers, t.knittable ? 1 : 0, t.stitches, t.stitches_vs_area, t.uncovered, t.failure);
   }
   std::ofstream(outdir + "/metric_vs_transfers.svg") << scatter_svg(trials, slope, offset, r);
   std::printf("-> %s/metric_vs_transfers.svg, %s/metric_vs_transfers.csv\n", outdir.c_str(), outdir.c_str());

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "design/shortcolumn/test_meshes.h"
+#include "knitforge/design/shortcolumn/harmonic_field.h"
 #include "knitforge/geometry/shapes.h"
 #include "knitforge/util/errors.h"
 
@@ -97,6 +98,103 @@ TEST(ColumnWales, SpreadingIsocurvesGiveShortWalesThatForkFromTheFront) {
     if (s.start_increase && !s.end_decrease) {
       EXPECT_LE(++increases[static_cast<size_t>(s.a.front())], 1);
     }
+}
+
+TEST(JoinedWales, AFrontAlongTheRimGetsOneWaleAcrossTheStretchItRemoves) {
+  // A 30 x 20 mm rectangle with a slot 2 mm wide cut in from its right side
+  // (y 9..11, x 11..30), f = x: the fronts are the lines x = 3.5, 7, 10.5;
+  // the next one, x = 14, meets the slot, whose tip (x = 11) lies closer
+  // than sw to the front x = 10.5. The isocurve d = sw leaves the surface at
+  // the slot's lower side and comes back at its upper side: joined along
+  // the rim, the whole front gets one wale, across the slot's tip.
+  const TriMesh m = test::grid_cells(30, 20, 1.0, [](int i, int j) { return !(i >= 11 && (j == 9 || j == 10)); });
+  std::vector<double> f;
+  for (const Vec3& p : m.vertices) f.push_back(p.x());
+  const ColumnWales w = extract_column_wales(m, f, kParams);
+  expect_consistent_strips(w);
+  EXPECT_GE(w.joined_arcs, 1);
+  auto at = [&](int id) { return w.samples[static_cast<size_t>(id)]; };
+  // The strips whose old front faces the slot's tip (x = 10.5, y in 9..11).
+  int facing = 0;
+  for (const ColumnStrip& s : w.strips) {
+    bool faces_tip = false;
+    for (int id : s.a) faces_tip = faces_tip || (std::abs(at(id).x() - 10.5) < 0.2 && at(id).y() > 9.0 && at(id).y() < 11.0);
+    if (!faces_tip) continue;
+    ++facing;
+    // The whole front, bottom to top, is the strip's old side.
+    EXPECT_NEAR(at(s.a.front()).y(), 0.0, 1e-6);
+    EXPECT_NEAR(at(s.a.back()).y(), 20.0, 1e-6);
+    // Its new wale runs along the slot's tip, and at x = 14 above and below.
+    bool across_tip = false;
+    for (int id : s.b) {
+      const Vec3 p = at(id);
+      across_tip = across_tip || (p.x() < 11.0 + 1e-6 && p.y() > 9.0 && p.y() < 11.0);
+      if (p.y() < 8.0 || p.y() > 12.0) {
+        EXPECT_NEAR(p.x(), 14.0, 0.05) << p.transpose();
+      }
+    }
+    EXPECT_TRUE(across_tip) << "the wale crosses the stretch of rim it removes";
+  }
+  EXPECT_EQ(facing, 1) << "one strip for the front along the rim";
+  // Both sides of the slot continue from where the wale leaves and rejoins
+  // the rim (the slot's sides at x = 14).
+  bool below = false, above = false;
+  for (const ColumnStrip& s : w.strips) {
+    below = below || ((at(s.a.back()) - Vec3(14.0, 9.0, 0.0)).norm() < 1e-6 && at(s.a.front()).y() < 1e-6);
+    above = above || ((at(s.a.front()) - Vec3(14.0, 11.0, 0.0)).norm() < 1e-6 && at(s.a.back()).y() > 20.0 - 1e-6);
+  }
+  EXPECT_TRUE(below);
+  EXPECT_TRUE(above);
+  // The strips cover the surface but for the slivers at its right end
+  // (narrower than a stitch, left uncovered): no hole in front of the tip.
+  double covered = 0.0;
+  for (const ColumnStrip& s : w.strips) {
+    std::vector<Vec3> ring;
+    for (int id : s.a) ring.push_back(at(id));
+    for (auto it = s.b.rbegin(); it != s.b.rend(); ++it) ring.push_back(at(*it));
+    double twice = 0.0;
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const Vec3& p = ring[k];
+      const Vec3& q = ring[(k + 1) % ring.size()];
+      twice += p.x() * q.y() - q.x() * p.y();
+    }
+    covered += std::abs(twice) / 2.0;
+  }
+  EXPECT_NEAR(covered + w.uncovered_area, w.surface_area, 0.01 * w.surface_area);
+}
+
+TEST(ColumnWales, AShortColumnsWaleHasMoreThanHalfTheSegmentsOfTheFrontItReplaces) {
+  // A random b of the Fig. 3.16 experiment where a short column's old front
+  // (between its fork and its join) was 8 segments and its new wale 4: the
+  // strip had no tessellation without four stacked short-row ends.
+  const TriMesh m = hemisphere();
+  const HarmonicField h = harmonic_field(m, {0.463155, 0.527030, 1.129328, 1.163904});
+  const ColumnWales w = extract_column_wales(m, h.value, kParams);
+  expect_consistent_strips(w);
+  int short_columns = 0;
+  for (const ColumnStrip& s : w.strips) {
+    if (!(s.start_increase && s.end_decrease)) continue;
+    ++short_columns;
+    const size_t na = s.a.size() - 1, nb = s.b.size() - 1;
+    if (na == 2) continue;  // a single stitch pair: 2 opposite 2
+    EXPECT_GT(2 * nb, na) << "short column: A " << na << " segments, B " << nb;
+    EXPECT_LE(nb, 2 * na);
+    EXPECT_GE(nb, 4u);
+  }
+  EXPECT_GT(short_columns, 10);
+}
+
+TEST(ColumnWales, ANewWaleHasAtMostTwiceTheSegmentsOfTheFrontItFaces) {
+  // A random b (example_06 with N = 100) whose start interval is 8 mm: the
+  // first wale around it is about 19 mm long, 8 segments against 2, and the
+  // first strip had no tessellation (tessellate_strip() covers B up to
+  // twice A).
+  const TriMesh m = hemisphere();
+  const HarmonicField h = harmonic_field(m, {0.439573, 0.456673, 0.920743, 1.255550});
+  const ColumnWales w = extract_column_wales(m, h.value, kParams);
+  expect_consistent_strips(w);
+  ASSERT_FALSE(w.strips.empty());
+  for (const ColumnStrip& s : w.strips) EXPECT_LE(s.b.size() - 1, 2 * (s.a.size() - 1)) << "strip of column " << s.column;
 }
 
 TEST(ColumnWales, RejectsFieldsItCannotStartFrom) {

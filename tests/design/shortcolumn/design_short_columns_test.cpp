@@ -43,6 +43,56 @@ TEST(DesignShortColumns, HemisphereFromPointToPointIsKnittableWithFewTransfers) 
   EXPECT_EQ(again.map.cells.size(), d.map.cells.size());
 }
 
+TEST(DesignShortColumns, FrontsAlongTheRimAndTinyIsocurvePiecesStayKnittable) {
+  // Four random b of the Fig. 3.16 experiment (example_06) whose designs
+  // were not knittable: fronts reach the rim, the isocurve d = sw leaves the
+  // surface and comes back; joined along the rim they are knittable, not
+  // joined the knitting order misses stitches.
+  const TriMesh surface = hemisphere();
+  {
+    const HarmonicField h = harmonic_field(surface, {0.329, 0.520, 0.654, 1.251});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_GT(d.wales.joined_arcs, 0);
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+    ShortColumnOptions apart = options();
+    apart.wales.join_along_boundary = false;
+    const ShortColumnDesign a = design_short_columns(surface, h.value, apart);
+    EXPECT_FALSE(a.mesh_check.ok() && a.map_check.ok()) << "not joined: stitches the knitting order never reaches";
+  }
+  {
+    // Here an isocurve piece of 0.06 mm around one front vertex took front
+    // samples from the short wale beside it, which left them without stitches.
+    const HarmonicField h = harmonic_field(surface, {0.650, 0.945, 1.281, 1.394});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_GT(d.wales.tiny_arcs, 0);
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  }
+  {
+    // Here a front piece whose samples mostly lie on its region's front (a
+    // few off it, beside a fork) was dropped by a mean-distance rule: the
+    // region advanced with no samples, its strips unreachable (or, left
+    // uncovered, a hole of 540 mm^2).
+    const HarmonicField h = harmonic_field(surface, {0.562, 0.848, 0.855, 0.923});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+    EXPECT_EQ(d.wales.sampleless_regions, 0);
+    EXPECT_LT(d.wales.uncovered_area, 50.0);
+  }
+  {
+    // Here an isocurve piece of 3.3 mm that could get no strip owned the
+    // front samples beside it: the wale next to it (from a fork to the rim)
+    // took only part of the front it faces, and 534 stitches were never
+    // reached.
+    const HarmonicField h = harmonic_field(surface, {0.411629, 0.581824, 0.609492, 0.836326});
+    const ShortColumnDesign d = design_short_columns(surface, h.value, options());
+    EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+    EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  }
+}
+
 TEST(DesignShortColumns, SpreadingFieldIsKnitWithShortColumns) {
   // f = angle on a quarter annulus: the wales fan out, short columns start
   // (increases) and the design stays knittable.

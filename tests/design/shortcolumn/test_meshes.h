@@ -1,6 +1,7 @@
 #pragma once
 // Planar test meshes of the short-column tests.
 #include <cmath>
+#include <vector>
 
 #include "knitforge/geometry/tri_mesh.h"
 
@@ -27,6 +28,32 @@ inline TriMesh polar_grid(double r0, double r1, double t0, double t1, int nr, in
         m.faces.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
         m.faces.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
       }
+    }
+  }
+  return m;
+}
+
+/// A planar grid of nx x ny square cells of side h from the origin, each
+/// split into two triangles (counter-clockwise seen from +z), keeping the
+/// cells (i, j) for which keep(i, j) is true; only used vertices are kept.
+template <class Keep>
+TriMesh grid_cells(int nx, int ny, double h, Keep keep) {
+  TriMesh m;
+  std::vector<int> id(static_cast<size_t>((nx + 1) * (ny + 1)), -1);
+  auto vertex = [&](int i, int j) {
+    int& v = id[static_cast<size_t>(j * (nx + 1) + i)];
+    if (v < 0) {
+      v = m.num_vertices();
+      m.vertices.emplace_back(i * h, j * h, 0.0);
+    }
+    return v;
+  };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (!keep(i, j)) continue;
+      const int a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1), d = vertex(i, j + 1);
+      m.faces.push_back({a, b, c});
+      m.faces.push_back({a, c, d});
     }
   }
   return m;

@@ -6,6 +6,7 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -242,15 +243,146 @@ double project_on_chain(const TriMesh& R, const std::vector<int>& chain, const s
   return param;
 }
 
-/// One piece of the isocurve d = sw: a new wale.
+/// One piece of the isocurve d = sw: a new wale; or several pieces joined
+/// along the surface boundary (join_arcs_along_boundary()).
 struct Arc {
-  std::vector<MeshPoint> path;  ///< in region ids
-  std::vector<Vec3> pos;
+  /// The isocurve pieces, in region ids (one unless joined), in wale order;
+  /// the region is cut along each.
+  std::vector<std::vector<MeshPoint>> paths;
+  std::vector<Vec3> pos;  ///< the wale: the pieces and the boundary between them
+  /// Index ranges [first, last] of `pos` that run along the surface boundary
+  /// between two joined pieces (no front there afterwards).
+  std::vector<std::pair<int, int>> rim_gaps;
   bool start_front = false, end_front = false;
   double s_start = 0.0, s_end = 0.0;  ///< chain parameters of the ends on the front
   int p = -1, q = -1;                 ///< sample range on the old front (even indices), -1 = none
   std::vector<int> samples;           ///< the new wale's global samples
+  std::vector<char> on_rim;           ///< per sample: in a rim gap (not front afterwards)
 };
+
+/// Joins arcs that are consecutive along the boundary of the region R with
+/// the stretch of boundary between them, when that stretch is surface
+/// boundary (no front edge) inside the removed part (every vertex of it
+/// nearer than `level` to the active curve, d from `bf`): the front there
+/// lies along the rim, and the isocurve d = level leaves the surface and
+/// comes back. Without the join each piece would get its own strip, and the
+/// old front samples facing the stretch would go to one of them (strips
+/// whose old side is much longer than the new, stacked short-row ends) or
+/// to none (stitches the knitting order never reaches); joined, the front
+/// gets one wale across the stretch it removes, along the rim. The loop
+/// runs with R on its left, so from where an arc ends (its right side is
+/// kept, d > level) the loop walks into the removed part, towards the start
+/// of the next arc. Chains of joins are followed (a front along the rim in
+/// several places); a cycle is left as it is. Returns the number of joins.
+int join_arcs_along_boundary(const Region& R, const Halfedges& he, const BandField& bf, double level,
+                             std::vector<Arc>& arcs) {
+  if (arcs.size() < 2) return 0;
+  // Boundary positions: loop, edge index (loop[i] -> loop[i + 1]), ratio along it.
+  struct LoopPos {
+    int loop = -1, edge = -1;
+    double t = 0.0;
+  };
+  const std::vector<std::vector<int>> loops = he.boundary_loops();
+  std::map<Edge, std::pair<int, int>> edge_at;  // -> (loop, edge index)
+  std::map<int, std::pair<int, int>> vertex_at; // -> (loop, edge index of the edge it starts)
+  for (size_t l = 0; l < loops.size(); ++l) {
+    const std::vector<int>& lp = loops[l];
+    for (size_t i = 0; i < lp.size(); ++i) {
+      edge_at[key(lp[i], lp[(i + 1) % lp.size()])] = {static_cast<int>(l), static_cast<int>(i)};
+      vertex_at[lp[i]] = {static_cast<int>(l), static_cast<int>(i)};
+    }
+  }
+  auto locate = [&](const MeshPoint& p) {
+    LoopPos r;
+    if (p.is_vertex()) {
+      const auto it = vertex_at.find(p.v0);
+      if (it == vertex_at.end()) return r;
+      r.loop = it->second.first, r.edge = it->second.second;
+    } else if (p.is_edge()) {
+      const auto it = edge_at.find(key(p.v0, p.v1));
+      if (it == edge_at.end()) return r;
+      r.loop = it->second.first, r.edge = it->second.second;
+      r.t = loops[static_cast<size_t>(r.loop)][static_cast<size_t>(r.edge)] == p.v0 ? p.ratio : 1.0 - p.ratio;
+    } else {
+      return r;
+    }
+    const std::vector<int>& lp = loops[static_cast<size_t>(r.loop)];
+    if (R.front.count(key(lp[static_cast<size_t>(r.edge)], lp[(static_cast<size_t>(r.edge) + 1) % lp.size()])))
+      r.loop = -1;  // on the front, not on the surface boundary
+    return r;
+  };
+  auto d_at = [&](int v) {
+    const int b = bf.from_region[static_cast<size_t>(v)];
+    return b < 0 ? kInf : bf.d[static_cast<size_t>(b)];
+  };
+  const size_t na = arcs.size();
+  std::vector<LoopPos> start(na), end(na);
+  for (size_t j = 0; j < na; ++j) {
+    start[j] = locate(arcs[j].paths.front().front());
+    end[j] = locate(arcs[j].paths.back().back());
+  }
+  // next[j]: the arc whose start follows the end of arc j along the loop
+  // across removed surface boundary only; the loop vertices in between.
+  std::vector<int> next(na, -1), prev(na, -1);
+  std::vector<std::vector<int>> between(na);
+  for (size_t j = 0; j < na; ++j) {
+    const LoopPos& e = end[j];
+    if (e.loop < 0) continue;
+    const std::vector<int>& lp = loops[static_cast<size_t>(e.loop)];
+    const int n = static_cast<int>(lp.size());
+    int best = -1;
+    double best_steps = kInf;
+    for (size_t k = 0; k < na; ++k) {
+      if (k == j || start[k].loop != e.loop) continue;
+      double steps = (start[k].edge - e.edge + n) % n + (start[k].t - e.t);
+      if (steps <= 0.0) steps += n;
+      if (steps < best_steps) best_steps = steps, best = static_cast<int>(k);
+    }
+    if (best < 0) continue;
+    std::vector<int> verts;
+    bool ok = true;
+    for (int i = e.edge; ok && i != start[static_cast<size_t>(best)].edge; i = (i + 1) % n) {
+      const int v = lp[static_cast<size_t>((i + 1) % n)];
+      const int w = lp[static_cast<size_t>((i + 2) % n)];
+      ok = d_at(v) < level && !R.front.count(key(v, w));
+      verts.push_back(v);
+    }
+    if (!ok || prev[static_cast<size_t>(best)] >= 0) continue;
+    next[j] = best;
+    prev[static_cast<size_t>(best)] = static_cast<int>(j);
+    between[j] = std::move(verts);
+  }
+  int joins = 0;
+  std::vector<Arc> joined;
+  std::vector<char> used(na, 0);
+  for (size_t j0 = 0; j0 < na; ++j0) {
+    if (prev[j0] >= 0 || used[j0]) continue;  // not the first of a chain
+    Arc a = std::move(arcs[j0]);
+    used[j0] = 1;
+    for (size_t j = j0; next[j] >= 0;) {
+      const size_t k = static_cast<size_t>(next[j]);
+      Arc& b = arcs[k];
+      const int g0 = static_cast<int>(a.pos.size()) - 1;  // P, where arc j ends
+      for (int v : between[j]) a.pos.push_back(R.mesh.vertices[v]);
+      if (!((b.pos.front() - a.pos.back()).norm() < 1e-9)) a.pos.push_back(b.pos.front());
+      const int g1 = static_cast<int>(a.pos.size()) - 1;  // Q, where arc k starts
+      a.pos.insert(a.pos.end(), b.pos.begin() + 1, b.pos.end());
+      a.rim_gaps.push_back({g0, g1});
+      for (const auto& [x, y] : b.rim_gaps) a.rim_gaps.push_back({x + g1, y + g1});
+      a.paths.insert(a.paths.end(), b.paths.begin(), b.paths.end());
+      a.end_front = b.end_front;
+      a.s_end = b.s_end;
+      used[k] = 1;
+      ++joins;
+      j = k;
+    }
+    joined.push_back(std::move(a));
+  }
+  for (size_t j = 0; j < na; ++j)
+    if (!used[j]) joined.push_back(std::move(arcs[j]));  // cycles stay apart
+  arcs = std::move(joined);
+  return joins;
+}
 
 double polyline_distance(const std::vector<Vec3>& pl, const Vec3& p) {
   double best = kInf;
@@ -261,14 +393,17 @@ double polyline_distance(const std::vector<Vec3>& pl, const Vec3& p) {
 }
 
 /// Segments of a new wale of length len: the even count nearest to len / sh,
-/// at least 2; a short wale with both ends at forks takes 4 to 2 (q - p)
+/// at least 2; a short wale with both ends at forks takes 2 (q - p) at most
 /// (tessellate_strip() covers B up to twice as long as A without stacking
-/// four short-row ends), or 2 opposite a 2-segment front part.
+/// four short-row ends) and more than half of q - p, at least 4 (the old
+/// front twice as long as B needs two A-advances at one apex somewhere:
+/// four stacked short-row ends), or 2 opposite a 2-segment front part.
 int segment_count(double len, double sh, const Arc& a) {
   int n = 2 * std::max(1, static_cast<int>(std::lround(len / (2.0 * sh))));
   if (a.start_front && a.end_front && a.p >= 0) {
     const int na = a.q - a.p;
-    n = na == 2 ? 2 : std::clamp(n, 4, 2 * na);
+    const int at_least = std::max(4, 2 * (na / 4 + 1));
+    n = na == 2 ? 2 : std::clamp(n, std::min(at_least, 2 * na), 2 * na);
   }
   return n;
 }
@@ -277,6 +412,57 @@ double polyline_length(const std::vector<Vec3>& pl) {
   double l = 0.0;
   for (size_t k = 1; k < pl.size(); ++k) l += (pl[k] - pl[k - 1]).norm();
   return l;
+}
+
+/// The samples of the new wale `pl` (the arc's positions, its ends moved to
+/// the fork samples) of length `len`: equal segments, segment_count() of
+/// them. An arc joined along the rim is resampled piece by piece (the
+/// isocurve pieces and the rim stretches between them, an even number of
+/// segments each, at least 2), so that where it leaves and rejoins the rim
+/// are samples of even label, the ends of the front pieces it leaves; when
+/// that gives more than twice the segments of the old front it faces
+/// (`na`; tessellate_strip() covers no more), it is resampled evenly. Every
+/// wale that faces an old front gets at most 2 na segments (e.g. the first
+/// wale around a short start interval). Arc::on_rim marks the samples
+/// strictly inside a rim stretch.
+std::vector<Vec3> resample_wale(const std::vector<Vec3>& pl, double len, double sh, int na, Arc& a) {
+  a.on_rim.clear();
+  if (!a.rim_gaps.empty()) {
+    std::vector<Vec3> pts{pl.front()};
+    std::vector<char> rim_flags{0};
+    auto part = [&](int i0, int i1, bool rim) {
+      const std::vector<Vec3> piece(pl.begin() + i0, pl.begin() + i1 + 1);
+      const double l = polyline_length(piece);
+      if (piece.size() < 2 || !(l > 0.0)) return;
+      const int n = 2 * std::max(1, static_cast<int>(std::lround(l / (2.0 * sh))));
+      const ResampledPolyline rs = resample_polyline(piece, l / n, ResampleOptions{false});
+      for (size_t k = 1; k < rs.points.size(); ++k) {
+        pts.push_back(rs.points[k]);
+        rim_flags.push_back(rim && k + 1 < rs.points.size() ? 1 : 0);
+      }
+    };
+    int from = 0;
+    for (const auto& [g0, g1] : a.rim_gaps) {
+      part(from, g0, false);
+      part(g0, g1, true);
+      from = g1;
+    }
+    part(from, static_cast<int>(pl.size()) - 1, false);
+    if (na < 0 || static_cast<int>(pts.size()) - 1 <= 2 * na) {
+      a.on_rim = std::move(rim_flags);
+      return pts;
+    }
+  }
+  int n = segment_count(len, sh, a);
+  if (na >= 1) n = std::min(n, 2 * na);
+  const ResampledPolyline rs = resample_polyline(pl, len / n, ResampleOptions{false});
+  for (size_t k = 0; k < rs.points.size(); ++k) {
+    const int seg = rs.segment[k];
+    bool rim = false;
+    for (const auto& [g0, g1] : a.rim_gaps) rim = rim || (seg >= g0 && seg < g1);
+    a.on_rim.push_back(rim ? 1 : 0);
+  }
+  return rs.points;
 }
 
 /// The last strip of a region narrower than a stitch width: between the
@@ -454,6 +640,14 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         out.uncovered_area += total_area(R.mesh);
         break;
       }
+      if (out.steps > 0 && R.samples.size() < 3) {
+        // A front without stitch samples (its piece was dropped): wales
+        // advanced from it would have nothing on their left, strips of
+        // their own that no course of the fabric reaches. Left uncovered.
+        out.uncovered_area += total_area(R.mesh);
+        ++out.sampleless_regions;
+        break;
+      }
       if (out.steps >= max_steps)
         throw SolverError(fmt::format("short-column wales: more than {} advances; the field or the stitch size is "
                                       "unsuitable (the fronts do not leave the surface)",
@@ -514,11 +708,12 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       for (const Isocurve& c : iso) {
         if (c.closed || c.num_points() < 2 || c.starts_at_junction || c.ends_at_junction) continue;
         Arc a;
+        a.paths.emplace_back();
         for (const MeshPoint& p : c.points) {
           MeshPoint q = p;
           q.v0 = bf.to_region[static_cast<size_t>(p.v0)];
           q.v1 = bf.to_region[static_cast<size_t>(p.v1)];
-          a.path.push_back(q);
+          a.paths.back().push_back(q);
         }
         a.pos = c.positions;
         auto on_front = [&](const MeshPoint& p, double& s) {
@@ -533,15 +728,16 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
           s = (1 - p.ratio) * cs[static_cast<size_t>(k0)] + p.ratio * cs[static_cast<size_t>(k1)];
           return true;
         };
-        a.start_front = on_front(a.path.front(), a.s_start);
-        a.end_front = on_front(a.path.back(), a.s_end);
+        a.start_front = on_front(a.paths.front().front(), a.s_start);
+        a.end_front = on_front(a.paths.back().back(), a.s_end);
         if (a.start_front && a.end_front && a.s_start > a.s_end) {
-          std::reverse(a.path.begin(), a.path.end());
+          std::reverse(a.paths.front().begin(), a.paths.front().end());
           std::reverse(a.pos.begin(), a.pos.end());
           std::swap(a.s_start, a.s_end);
         }
         arcs.push_back(std::move(a));
       }
+      if (o.join_along_boundary) out.joined_arcs += join_arcs_along_boundary(R, he, bf, level, arcs);
       if (arcs.empty()) {
         if (whole) {
           // The region is narrower than a stitch width: the last wale is its
@@ -572,78 +768,109 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       // that every strip's first course runs left to right as the operators
       // of tessellate_strip() assume.
       auto even = [&](int k) { return out.parity[static_cast<size_t>(S[k])] == 0; };
-      std::vector<int> owner(static_cast<size_t>(ns), -1);  // even samples: nearest arc
-      for (int k = 0; k < ns; ++k) {
-        if (!even(k)) continue;
-        double best = kInf;
-        for (size_t j = 0; j < arcs.size(); ++j) {
-          const double dd = polyline_distance(arcs[j].pos, out.samples[static_cast<size_t>(S[k])]);
-          if (dd < best) best = dd, owner[static_cast<size_t>(k)] = static_cast<int>(j);
-        }
-      }
-      auto snap = [&](double s, const std::vector<char>& taken) {
-        int best = -1;
-        double bd = kInf;
-        for (int k = 1; k + 1 < ns; ++k) {
-          if (!even(k) || taken[static_cast<size_t>(S[k])] || !inside[static_cast<size_t>(S[k])]) continue;
-          const double dd = std::abs(sp[static_cast<size_t>(k)] - s);
-          if (dd < bd) bd = dd, best = k;
-        }
-        return best;
-      };
+      // An isocurve piece shorter than half a stitch height (the level d = sw
+      // passing around a single vertex of the front that sticks out, or
+      // clipping a corner) holds no wale: it cuts the region, owns no front
+      // sample (it would break the run of samples facing the real wale
+      // there) and makes neither a strip nor a front piece.
+      std::vector<char> tiny(arcs.size(), 0);
       for (size_t j = 0; j < arcs.size(); ++j) {
-        Arc& a = arcs[j];
-        if (ns < 3) {  // nothing on the left to fork from
-          a.start_front = a.end_front = false;
-          continue;
+        tiny[j] = polyline_length(arcs[j].pos) < 0.5 * sh ? 1 : 0;
+        if (tiny[j]) ++out.tiny_arcs;
+      }
+      // Each even sample of the old front belongs to its nearest arc, and an
+      // arc's strip takes its longest run of samples. An arc that gets no
+      // strip (too few samples, no fork possible) owns none either: its
+      // samples go to the arcs beside it, and the ranges are found again.
+      std::vector<char> no_strip = tiny;
+      std::vector<std::pair<bool, bool>> ends(arcs.size());
+      for (size_t j = 0; j < arcs.size(); ++j) ends[j] = {arcs[j].start_front, arcs[j].end_front};
+      const int moved_before = out.moved_forks;
+      for (bool again = true; again;) {
+        again = false;
+        out.moved_forks = moved_before;
+        for (size_t j = 0; j < arcs.size(); ++j) {
+          std::tie(arcs[j].start_front, arcs[j].end_front) = ends[j];
+          arcs[j].p = arcs[j].q = -1;
         }
-        int lo = -1, hi = -1, run_lo = -1, best_len = 0;  // longest run of owned even samples
+        std::vector<int> owner(static_cast<size_t>(ns), -1);  // even samples: nearest arc
         for (int k = 0; k < ns; ++k) {
           if (!even(k)) continue;
-          if (owner[static_cast<size_t>(k)] == static_cast<int>(j)) {
-            if (run_lo < 0) run_lo = k;
-            if (k - run_lo + 1 > best_len) best_len = k - run_lo + 1, lo = run_lo, hi = k;
-          } else {
-            run_lo = -1;
+          double best = kInf;
+          for (size_t j = 0; j < arcs.size(); ++j) {
+            if (no_strip[j]) continue;
+            const double dd = polyline_distance(arcs[j].pos, out.samples[static_cast<size_t>(S[k])]);
+            if (dd < best) best = dd, owner[static_cast<size_t>(k)] = static_cast<int>(j);
           }
         }
-        if (a.start_front) {
-          int k = snap(a.s_start, increase_apex);
-          const int k0 = snap(a.s_start, std::vector<char>(out.samples.size(), 0));
-          if (k >= 0 && k != k0) ++out.moved_forks;
-          if (k < 0) a.start_front = false;
-          else lo = k;
-        }
-        if (a.end_front) {
-          int k = snap(a.s_end, decrease_apex);
-          const int k0 = snap(a.s_end, std::vector<char>(out.samples.size(), 0));
-          if (k >= 0 && k != k0) ++out.moved_forks;
-          if (k < 0) a.end_front = false;
-          else hi = k;
-        }
-        int first_even = 0, last_even = ns - 1;
-        while (first_even < ns && !even(first_even)) ++first_even;
-        while (last_even >= 0 && !even(last_even)) --last_even;
-        if (!a.start_front && a.end_front && lo < 0) lo = first_even;
-        if (a.start_front && !a.end_front && hi < 0) hi = last_even;
-        // A short column with both ends at forks needs 4 segments on the old
-        // front (2 when it is a single stitch pair): the fork operators of
-        // tessellate_strip() start and end with a quad each.
-        if (a.start_front && a.end_front && lo >= 0 && hi >= 0 && hi - lo == 2) {
-          auto joinable = [&](int k) {
-            return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !decrease_apex[static_cast<size_t>(S[k])];
-          };
-          auto forkable = [&](int k) {
-            return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !increase_apex[static_cast<size_t>(S[k])];
-          };
-          if (joinable(hi + 2)) hi += 2;
-          else if (forkable(lo - 2)) lo -= 2;
-        }
-        if (lo >= 0 && hi >= 0 && hi - lo >= 2) {
-          a.p = lo;
-          a.q = hi;
-        } else {
-          a.start_front = a.end_front = false;
+        auto snap = [&](double s, const std::vector<char>& taken) {
+          int best = -1;
+          double bd = kInf;
+          for (int k = 1; k + 1 < ns; ++k) {
+            if (!even(k) || taken[static_cast<size_t>(S[k])] || !inside[static_cast<size_t>(S[k])]) continue;
+            const double dd = std::abs(sp[static_cast<size_t>(k)] - s);
+            if (dd < bd) bd = dd, best = k;
+          }
+          return best;
+        };
+        for (size_t j = 0; j < arcs.size(); ++j) {
+          Arc& a = arcs[j];
+          if (ns < 3 || tiny[j]) {  // nothing on the left to fork from, or no wale
+            a.start_front = a.end_front = false;
+            continue;
+          }
+          int lo = -1, hi = -1, run_lo = -1, best_len = 0;  // longest run of owned even samples
+          for (int k = 0; k < ns; ++k) {
+            if (!even(k)) continue;
+            if (owner[static_cast<size_t>(k)] == static_cast<int>(j)) {
+              if (run_lo < 0) run_lo = k;
+              if (k - run_lo + 1 > best_len) best_len = k - run_lo + 1, lo = run_lo, hi = k;
+            } else {
+              run_lo = -1;
+            }
+          }
+          if (a.start_front) {
+            int k = snap(a.s_start, increase_apex);
+            const int k0 = snap(a.s_start, std::vector<char>(out.samples.size(), 0));
+            if (k >= 0 && k != k0) ++out.moved_forks;
+            if (k < 0) a.start_front = false;
+            else lo = k;
+          }
+          if (a.end_front) {
+            int k = snap(a.s_end, decrease_apex);
+            const int k0 = snap(a.s_end, std::vector<char>(out.samples.size(), 0));
+            if (k >= 0 && k != k0) ++out.moved_forks;
+            if (k < 0) a.end_front = false;
+            else hi = k;
+          }
+          int first_even = 0, last_even = ns - 1;
+          while (first_even < ns && !even(first_even)) ++first_even;
+          while (last_even >= 0 && !even(last_even)) --last_even;
+          if (!a.start_front && a.end_front && lo < 0) lo = first_even;
+          if (a.start_front && !a.end_front && hi < 0) hi = last_even;
+          // A short column with both ends at forks needs 4 segments on the old
+          // front (2 when it is a single stitch pair): the fork operators of
+          // tessellate_strip() start and end with a quad each.
+          if (a.start_front && a.end_front && lo >= 0 && hi >= 0 && hi - lo == 2) {
+            auto joinable = [&](int k) {
+              return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !decrease_apex[static_cast<size_t>(S[k])];
+            };
+            auto forkable = [&](int k) {
+              return k >= 1 && k + 1 < ns && inside[static_cast<size_t>(S[k])] && !increase_apex[static_cast<size_t>(S[k])];
+            };
+            if (joinable(hi + 2)) hi += 2;
+            else if (forkable(lo - 2)) lo -= 2;
+          }
+          if (lo >= 0 && hi >= 0 && hi - lo >= 2) {
+            a.p = lo;
+            a.q = hi;
+          } else {
+            a.start_front = a.end_front = false;
+            if (!no_strip[j] && std::count(owner.begin(), owner.end(), static_cast<int>(j)) > 0) {
+              no_strip[j] = 1;
+              again = true;
+            }
+          }
         }
       }
       // Ranges of different arcs must not overlap (disjoint isocurve pieces
@@ -674,12 +901,12 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         if (a.start_front) pl.front() = out.samples[static_cast<size_t>(S[a.p])];
         if (a.end_front) pl.back() = out.samples[static_cast<size_t>(S[a.q])];
         const double len = polyline_length(pl);
-        if (!(len > 0.0)) {
+        if (!(len > 0.0) || tiny[j]) {
           a.p = a.q = -1;
           continue;
         }
-        const ResampledPolyline rs = resample_polyline(pl, len / segment_count(len, sh, a), ResampleOptions{false});
-        const int m = rs.num_segments;
+        const std::vector<Vec3> pts = resample_wale(pl, len, sh, a.p >= 0 ? a.q - a.p : -1, a);
+        const int m = static_cast<int>(pts.size()) - 1;
         const int base_parity = a.p >= 0 ? out.parity[static_cast<size_t>(S[a.p])] : 0;
         for (int k = 0; k <= m; ++k) {
           if (k == 0 && a.start_front) {
@@ -688,7 +915,7 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
             a.samples.push_back(S[a.q]);
           } else {
             a.samples.push_back(static_cast<int>(out.samples.size()));
-            out.samples.push_back(rs.points[static_cast<size_t>(k)]);
+            out.samples.push_back(pts[static_cast<size_t>(k)]);
             out.parity.push_back((base_parity + k) % 2);
           }
         }
@@ -717,11 +944,29 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         std::vector<int> cur;
         int cursor = 0;
         bool open = true;  // the old front before the first arc continues
+        // The samples of a wale; one that runs along the rim (joined arcs)
+        // is front only off the rim: each stretch on it ends a piece.
+        auto append = [&](const Arc& a) {
+          // Two arcs that touch share the sample where one rejoins and the next leaves.
+          const bool shared = !cur.empty() && cur.back() == a.samples.front();
+          for (size_t k = shared ? 1 : 0; k < a.samples.size(); ++k) {
+            if (!a.on_rim[k]) {
+              cur.push_back(a.samples[k]);
+            } else if (!cur.empty()) {
+              pieces.push_back(cur);
+              cur.clear();
+            }
+          }
+        };
         for (size_t j : order) {
           const Arc& a = arcs[j];
           if (a.samples.empty()) continue;
-          if (a.p < 0) {  // a wale with nothing on its left: its own piece
-            pieces.push_back(a.samples);
+          if (a.p < 0) {  // a wale with nothing on its left: its own piece(s)
+            std::vector<int> before = std::move(cur);
+            cur.clear();
+            append(a);
+            if (!cur.empty()) pieces.push_back(cur);
+            cur = std::move(before);
             continue;
           }
           if (a.start_front && open) {
@@ -730,9 +975,7 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
             pieces.push_back(cur);
             cur.clear();
           }
-          // Two arcs that touch share the sample where one rejoins and the next leaves.
-          const bool shared = !cur.empty() && cur.back() == a.samples.front();
-          cur.insert(cur.end(), a.samples.begin() + (shared ? 1 : 0), a.samples.end());
+          append(a);
           if (a.end_front) {
             cursor = a.q + 1;
             open = true;
@@ -755,26 +998,28 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       std::vector<double> fcur = R.f;
       std::set<Edge> front = R.front;
       for (const Arc& a : arcs) {
-        const SplitMeshResult split = split_mesh_along_path(cur, a.path);
-        d = carry_vertex_scalar(cur, split, d);
-        fcur = carry_vertex_scalar(cur, split, fcur);
-        std::map<Edge, std::vector<std::pair<double, int>>> on_front;
-        for (int v = split.original_num_vertices; v < split.mesh.num_vertices(); ++v) {
-          const MeshPoint& p = split.new_vertex_origin[static_cast<size_t>(v - split.original_num_vertices)];
-          if (!p.is_edge()) continue;
-          const Edge e = key(p.v0, p.v1);
-          if (!front.count(e)) continue;
-          on_front[e].push_back({p.v0 == e.first ? p.ratio : 1.0 - p.ratio, v});
+        for (const std::vector<MeshPoint>& path : a.paths) {
+          const SplitMeshResult split = split_mesh_along_path(cur, path);
+          d = carry_vertex_scalar(cur, split, d);
+          fcur = carry_vertex_scalar(cur, split, fcur);
+          std::map<Edge, std::vector<std::pair<double, int>>> on_front;
+          for (int v = split.original_num_vertices; v < split.mesh.num_vertices(); ++v) {
+            const MeshPoint& p = split.new_vertex_origin[static_cast<size_t>(v - split.original_num_vertices)];
+            if (!p.is_edge()) continue;
+            const Edge e = key(p.v0, p.v1);
+            if (!front.count(e)) continue;
+            on_front[e].push_back({p.v0 == e.first ? p.ratio : 1.0 - p.ratio, v});
+          }
+          for (auto& [e, list] : on_front) {
+            front.erase(e);
+            std::sort(list.begin(), list.end());
+            int prev = e.first;
+            for (const auto& [t, v] : list) front.insert(key(prev, v)), prev = v;
+            front.insert(key(prev, e.second));
+          }
+          for (size_t k = 0; k + 1 < split.path.size(); ++k) front.insert(key(split.path[k], split.path[k + 1]));
+          cur = split.mesh;
         }
-        for (auto& [e, list] : on_front) {
-          front.erase(e);
-          std::sort(list.begin(), list.end());
-          int prev = e.first;
-          for (const auto& [t, v] : list) front.insert(key(prev, v)), prev = v;
-          front.insert(key(prev, e.second));
-        }
-        for (size_t k = 0; k + 1 < split.path.size(); ++k) front.insert(key(split.path[k], split.path[k + 1]));
-        cur = split.mesh;
       }
       TriMesh kept;
       std::vector<int> remap(static_cast<size_t>(cur.num_vertices()), -1);
@@ -862,18 +1107,20 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
         chains[c] = front_chain(next[c], hc);
         chain_s[c] = chain_params(next[c].mesh, chains[c]);
       }
+      // A piece goes to the region whose front chain its samples lie on:
+      // the median distance (a few samples off the chain, e.g. the old front
+      // next to a fork inside the removed disk, must not lose the piece; its
+      // region would be left without samples).
       for (const std::vector<int>& piece : pieces) {
         int best = -1;
         double bd = kInf;
         for (size_t c = 0; c < next.size(); ++c) {
           if (chains[c].empty()) continue;
-          double sum = 0.0;
-          for (int id : piece) {
-            double dist = 0.0;
-            project_on_chain(next[c].mesh, chains[c], chain_s[c], out.samples[static_cast<size_t>(id)], &dist);
-            sum += dist;
-          }
-          if (sum / piece.size() < bd) bd = sum / piece.size(), best = static_cast<int>(c);
+          std::vector<double> dist(piece.size(), 0.0);
+          for (size_t k = 0; k < piece.size(); ++k)
+            project_on_chain(next[c].mesh, chains[c], chain_s[c], out.samples[static_cast<size_t>(piece[k])], &dist[k]);
+          std::nth_element(dist.begin(), dist.begin() + static_cast<long>(dist.size() / 2), dist.end());
+          if (dist[dist.size() / 2] < bd) bd = dist[dist.size() / 2], best = static_cast<int>(c);
         }
         if (best < 0 || bd > 0.5 * sw || piece.size() < 3) {
           ++out.dropped_pieces;

@@ -19,6 +19,22 @@
 /// ... Remove the region with d < sw", L1338); when R falls apart, each
 /// component continues with its part of the front.
 ///
+/// ## Fronts along the boundary
+///
+/// Where the front runs closer than sw to the surface boundary (the rim),
+/// the isocurve d = sw leaves the surface there and comes back: it falls
+/// into several pieces whose ends lie on the rim, and the stretch of rim
+/// between two consecutive pieces lies in the removed part d < sw. Each
+/// piece on its own would be a wale facing only part of the old front; the
+/// old front's samples facing the stretch would go to one of them (a strip
+/// whose old side is much longer than the new one: stacked short-row ends)
+/// or to none (their stitches, if any, unreachable by the knitting order).
+/// Such pieces are joined along the rim (ColumnWaleOptions::
+/// join_along_boundary): the front gets one wale across the stretch it
+/// removes, running along the rim there, and one strip. Afterwards only the
+/// parts of that wale off the rim are front (the region is cut along the
+/// pieces only; it usually falls apart at the stretch).
+///
 /// ## Reference isovalue (Alg. 3.2, 3.3) — our reading
 ///
 /// The reference isocurve of a wale is "the maximal isovalue among all points
@@ -84,6 +100,11 @@ struct ColumnWaleOptions {
   /// (sw x sh) is left uncovered instead of getting strips of its own (see
   /// ColumnWales::dropped_remnants); 0 keeps every piece.
   double min_region_stitches = 2.0;
+  /// Where the front lies along the surface boundary (closer than sw), the
+  /// isocurve d = sw leaves the surface and comes back: join its pieces
+  /// along the boundary into one wale (see "Fronts along the boundary" in
+  /// the file comment).
+  bool join_along_boundary = true;
 };
 
 /// The strip between an old front's samples (left, A) and a new wale (right,
@@ -116,6 +137,14 @@ struct ColumnWales {
   /// meet the rest of the fabric at a corner only.
   int dropped_remnants = 0;
   int moved_forks = 0;     ///< forks moved off a sample that already was an apex of that type
+  /// Isocurve pieces joined to the previous one along the surface boundary
+  /// (ColumnWaleOptions::join_along_boundary).
+  int joined_arcs = 0;
+  /// Isocurve pieces shorter than sh / 2 that only cut the region (no wale).
+  int tiny_arcs = 0;
+  /// Regions whose front has no stitch samples (its piece dropped), left
+  /// uncovered (their area is in uncovered_area).
+  int sampleless_regions = 0;
   int band_growths = 0;    ///< band radius doublings
   int pinched_vertices = 0; ///< vertices split where the remaining region touched itself (split_nonmanifold_vertices.h)
   int last_strips = 0;          ///< regions closed by a last strip to the surface boundary
