@@ -13,13 +13,13 @@
 /// mapped by the closest pattern triangle's affine map extended to them
 /// (OutsidePattern::Extend: clamping them to the closest boundary point
 /// collapsed whole stitches of the long rows and row ends to zero area, which
-/// a simulation of the design cannot start from). A vertex goes to the mean of its stitch corners' 3D
-/// points. Averaging in 3D, not in the pattern, is what closes a dart: the
-/// vertex merged across a dart's Collapsed wedge has its corners on the
-/// wedge's two legs, which the cut mesh maps to the same seam, while the
-/// middle of the wedge lifts to a point on one leg far from both (before
-/// 2026-12-02 that stretched the stitches along the hemisphere's darts to
-/// 2-5 times their size).
+/// a simulation of the design cannot start from). A vertex goes to the mean
+/// of its stitch corners' 3D points. Averaging in 3D, not in the pattern,
+/// is what closes a dart: the vertex merged across a dart's Collapsed wedge
+/// has its corners on the wedge's two legs, which the cut mesh maps to the
+/// same seam, while the middle of the wedge lifts to a point on one leg far
+/// from both (before 2026-12-02 that stretched the stitches along the
+/// hemisphere's darts to up to 5.3 times their size).
 #include <array>
 #include <vector>
 #include "knitforge/core/knit_params.h"
