@@ -374,11 +374,18 @@ TEST(KnitFlattenedPattern, SaddleWithAHorizontalTwoEndDartClosesItWithShortRows)
   EXPECT_EQ(k.raster.filled_gap_cells, 0);
   EXPECT_GT(count_cells(k.raster.map, CellType::ShortRowLeft), 8);
   EXPECT_GT(count_cells(k.raster.map, CellType::ShortRowRight), 8);
-  // Lifted through the pattern rows of the band: on the saddle.
+  // Lifted through the pattern rows of the band: on the saddle, except the
+  // long rows and row ends outside the pattern (lift_map_to_surface():
+  // extended beyond the rim, here by up to 19 mm where the saddle is steep).
+  int on_saddle = 0;
   for (const auto& v : k.designed.vertices) {
+    const double rho = std::hypot(v.x(), v.y());
+    EXPECT_LE(rho, 50.0 + 25.0);
+    if (rho > 50.0 - 1e-6) continue;
     EXPECT_NEAR(v.z(), monkey_saddle_height(v.x(), v.y()), 1.0);
-    EXPECT_LE(std::hypot(v.x(), v.y()), 50.0 + 1e-6);
+    ++on_saddle;
   }
+  EXPECT_GT(on_saddle, 0.8 * k.designed.num_vertices());
 }
 
 TEST(KnitFlattenedPattern, HemisphereWithAutomaticDartsIsKnittable) {
@@ -399,13 +406,23 @@ TEST(KnitFlattenedPattern, LiftedStitchesLieOnTheSurfaceAndEvaluate) {
   const Flattening f = flatten_surface(m);
   const KnitPatternResult k = knit_flattened_pattern(f, m, KnitParams{});
   ASSERT_TRUE(k.knittability.ok()) << k.knittability.text();
+  // On the (triangulated) sphere; the long row below the rim, outside the
+  // pattern, extended down the rim (lift_map_to_surface(); up to 18 mm at
+  // its ends, where the round pattern's edge rises above the straight row).
+  int on_sphere = 0;
   for (const auto& v : k.designed.vertices) {
-    EXPECT_NEAR(v.norm(), 50.0, 0.5);  // on the (triangulated) sphere
-    EXPECT_GE(v.z(), -1e-9);
+    EXPECT_GE(v.z(), -25.0);
+    if (v.z() < 0.0) {
+      EXPECT_NEAR(std::hypot(v.x(), v.y()), 50.0, 1.0);
+      continue;
+    }
+    EXPECT_NEAR(v.norm(), 50.0, 0.5);
+    ++on_sphere;
   }
+  EXPECT_GT(on_sphere, 0.8 * k.designed.num_vertices());
   ASSERT_TRUE(k.evaluation.has_value());
   EXPECT_TRUE(std::isfinite(k.evaluation->rms_error));
-  EXPECT_LT(k.evaluation->designed_rms_error, 0.5);
+  EXPECT_LT(k.evaluation->designed_rms_error, 3.0);
   EXPECT_LT(k.evaluation->relative_rms_error, 0.2);
 }
 

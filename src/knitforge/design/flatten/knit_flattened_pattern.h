@@ -3,10 +3,9 @@
 /// The second step of the flattening route (seed §2.3.2): rasterise the
 /// flattened pattern into a knitting map (rasterize_pattern()), check its
 /// knittability (check_knittability()), place its stitch mesh on the target
-/// (lift_map_to_surface(); for a map with bands, RasterizedPattern::
-/// short_row_holes > 0, each stitch corner is placed at its cell's
-/// cell_pattern_row instead of its map row, since a band's map rows are not
-/// the pattern's rows) and evaluate it against the target surface
+/// (lift_map_to_surface(): each stitch corner at its cell's pattern row, so
+/// a band's stitches lie where the pattern has them, and a dart's stitches
+/// meet on its seam) and evaluate it against the target surface
 /// (evaluate_stitch_mesh(): relaxed rest shape, shape error, per-stitch
 /// distortion).
 #include <optional>

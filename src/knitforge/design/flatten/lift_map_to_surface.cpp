@@ -1,6 +1,7 @@
 #include "knitforge/design/flatten/lift_map_to_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -25,7 +26,7 @@ Vec3 barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c, dou
 }  // namespace
 
 std::vector<Vec3> pattern_points_to_surface(const TriMesh& mesh, const std::vector<Vec2>& uv,
-                                            const std::vector<Vec2>& points) {
+                                            const std::vector<Vec2>& points, OutsidePattern outside) {
   if (static_cast<int>(uv.size()) != mesh.num_vertices()) {
     throw InvalidInput("pattern_points_to_surface: one 2D position per vertex needed");
   }
@@ -95,8 +96,8 @@ std::vector<Vec3> pattern_points_to_surface(const TriMesh& mesh, const std::vect
               best_face = f;
               const Vec2 e1 = uv[t[1]] - uv[t[0]];
               const Vec2 e2 = uv[t[2]] - uv[t[0]];
-              best_bary =
-                  barycentric(q.head<2>(), uv[t[0]], uv[t[1]], uv[t[2]], e1.x() * e2.y() - e1.y() * e2.x());
+              const Vec2 at = outside == OutsidePattern::Closest ? Vec2(q.head<2>()) : p;
+              best_bary = barycentric(at, uv[t[0]], uv[t[1]], uv[t[2]], e1.x() * e2.y() - e1.y() * e2.x());
             }
           }
         }
@@ -109,13 +110,76 @@ std::vector<Vec3> pattern_points_to_surface(const TriMesh& mesh, const std::vect
   return out;
 }
 
+std::vector<std::array<Vec2, 4>> stitch_corner_pattern_points(const RasterizedPattern& raster,
+                                                               const StitchMesh& sm, const KnitParams& params) {
+  const KnittingMap& map = raster.map;
+  const bool banded = raster.cell_pattern_row.size() == map.cells.size();
+  std::vector<std::array<Vec2, 4>> out(sm.stitches.size());
+  for (size_t k = 0; k < sm.stitches.size(); ++k) {
+    const Stitch& s = sm.stitches[k];
+    const int r = s.course;
+    const int c = s.wale;
+    if (r < 0 || r >= map.rows || c < 0 || c >= map.cols)
+      throw InvalidInput(fmt::format("stitch_corner_pattern_points: stitch {} lies outside the map", k));
+    const int row = banded ? raster.cell_pattern_row[static_cast<size_t>(r) * map.cols + c] : r;
+    auto corner = [&](int dx, int dy) -> Vec2 {
+      return Vec2(raster.origin.x() + (c + dx) * params.stitch_width,
+                  raster.origin.y() + (row + dy) * params.stitch_height);
+    };
+    const Vec2 bl = corner(0, 0);
+    const Vec2 br = corner(1, 0);
+    const Vec2 tr = corner(1, 1);
+    const Vec2 tl = corner(0, 1);
+    // Corners in the order of core/stitch.h; an apex stands for the two
+    // grid corners it merges.
+    std::array<Vec2, 4> p = {bl, br, tr, tl};
+    switch (s.type) {
+      case StitchType::Knit:
+        break;
+      case StitchType::ShortRowLeft:
+        p = {0.5 * (bl + tl), br, tr, Vec2::Zero()};
+        break;
+      case StitchType::ShortRowRight:
+        p = {bl, 0.5 * (br + tr), tl, Vec2::Zero()};
+        break;
+      case StitchType::Increase:
+        p = {0.5 * (bl + br), tr, tl, Vec2::Zero()};
+        break;
+      case StitchType::Decrease:
+        p = {bl, br, 0.5 * (tr + tl), Vec2::Zero()};
+        break;
+    }
+    out[k] = p;
+  }
+  return out;
+}
+
 StitchMesh lift_map_to_surface(const RasterizedPattern& raster, const TriMesh& mesh,
                                const std::vector<Vec2>& uv, const KnitParams& params) {
   StitchMesh sm = map_to_stitch_mesh_topology(raster.map, params);
-  std::vector<Vec2> pts(sm.vertices.size());
-  for (size_t v = 0; v < pts.size(); ++v) pts[v] = raster.origin + sm.vertices[v].head<2>();
-  const std::vector<Vec3> lifted = pattern_points_to_surface(mesh, uv, pts);
-  for (size_t v = 0; v < pts.size(); ++v) sm.vertices[v] = lifted[v];
+  const std::vector<std::array<Vec2, 4>> corners = stitch_corner_pattern_points(raster, sm, params);
+  std::vector<Vec2> pts;
+  pts.reserve(4 * corners.size());
+  for (size_t k = 0; k < corners.size(); ++k) {
+    for (int q = 0; q < sm.stitches[k].corners(); ++q) pts.push_back(corners[k][q]);
+  }
+  const std::vector<Vec3> lifted = pattern_points_to_surface(mesh, uv, pts, OutsidePattern::Extend);
+  // Each vertex at the mean of its stitch corners' 3D points: a vertex that
+  // closes a dart (its corners on the dart's two legs, the wedge between them
+  // Collapsed) lands on the dart's seam, where both legs meet on the
+  // surface, not at the lifted middle of the wedge.
+  std::vector<Vec3> sum(sm.vertices.size(), Vec3::Zero());
+  std::vector<int> count(sm.vertices.size(), 0);
+  size_t next = 0;
+  for (const Stitch& s : sm.stitches) {
+    for (int q = 0; q < s.corners(); ++q) {
+      sum[s.v[q]] += lifted[next++];
+      ++count[s.v[q]];
+    }
+  }
+  // Every vertex is a corner of some stitch (map_to_stitch_mesh_topology()
+  // numbers them by first use).
+  for (size_t v = 0; v < sm.vertices.size(); ++v) sm.vertices[v] = sum[v] / static_cast<double>(count[v]);
   return sm;
 }
 
