@@ -4,6 +4,7 @@
 
 #include "saddle_dart.h"
 
+#include "hemisphere_darts.h"
 #include "knitforge/design/flatten/dart.h"
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/geometry/shapes.h"
@@ -15,23 +16,8 @@ namespace {
 
 constexpr double kR = 60.0;
 
-// Four one-end darts on the hemisphere: from the boundary towards the pole
-// along +x, -x (horizontal) and +y, -y (vertical), tips at 30 mm from the axis.
-std::vector<DartSpec> four_darts() {
-  std::vector<DartSpec> darts;
-  const double r = 30.0;
-  const double z = std::sqrt(kR * kR - r * r);
-  const Vec3 tips[4] = {Vec3(r, 0, z), Vec3(-r, 0, z), Vec3(0, r, z), Vec3(0, -r, z)};
-  for (int i = 0; i < 4; ++i) {
-    DartSpec d;
-    d.type = DartType::OneEnd;
-    d.orientation = i < 2 ? DartOrientation::Horizontal : DartOrientation::Vertical;
-    d.points = {DartWaypoint::at_position(tips[i])};
-    d.to_boundary = true;
-    darts.push_back(d);
-  }
-  return darts;
-}
+// Four one-end darts on the hemisphere, tips at 30 mm from the axis.
+std::vector<DartSpec> four_darts() { return hemisphere_rim_darts(kR, 30.0); }
 
 TEST(FlattenDarts, CuttingKeepsTheMeshAManifoldDisk) {
   const TriMesh m = hemisphere(kR, 6.0);

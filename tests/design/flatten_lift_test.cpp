@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hemisphere_darts.h"
 #include "knitforge/design/flatten/flatten_surface.h"
 #include "knitforge/design/flatten/knit_flattened_pattern.h"
 #include "knitforge/design/flatten/lift_map_to_surface.h"
@@ -13,22 +14,9 @@
 namespace knitforge {
 namespace {
 
-// Four one-end darts from the hemisphere's rim towards its top, two
-// horizontal (left and right) and two vertical (bottom and top): the shape of
+// Four one-end darts from the hemisphere's rim towards its top: the shape of
 // `knitforge flatten hemisphere --auto-darts 4 --auto-darts-rms-only`.
-std::vector<DartSpec> four_darts(double radius) {
-  std::vector<DartSpec> darts;
-  const double r = 0.55 * radius, z = std::sqrt(radius * radius - r * r);
-  const Vec3 tips[4] = {Vec3(r, 0, z), Vec3(-r, 0, z), Vec3(0, r, z), Vec3(0, -r, z)};
-  for (int i = 0; i < 4; ++i) {
-    DartSpec d;
-    d.orientation = i < 2 ? DartOrientation::Horizontal : DartOrientation::Vertical;
-    d.points = {DartWaypoint::at_position(tips[i])};
-    d.to_boundary = true;
-    darts.push_back(d);
-  }
-  return darts;
-}
+std::vector<DartSpec> four_darts(double radius) { return hemisphere_rim_darts(radius, 0.55 * radius); }
 
 double triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hemisphere_darts.h"
 #include "knitforge/convert/map_knittability.h"
 #include "knitforge/design/flatten/dart_hints.h"
 #include "knitforge/design/flatten/flatten_surface.h"
@@ -306,19 +307,7 @@ struct BuiltIn {
   int max_filled = -1;  ///< >= 0: at most this many filled gap cells
 };
 
-std::vector<DartSpec> hemisphere_darts() {
-  std::vector<DartSpec> darts;
-  const double r = 40.0, R = 75.0, z = std::sqrt(R * R - r * r);
-  const Vec3 tips[4] = {Vec3(r, 0, z), Vec3(-r, 0, z), Vec3(0, r, z), Vec3(0, -r, z)};
-  for (int i = 0; i < 4; ++i) {
-    DartSpec d;
-    d.orientation = i < 2 ? DartOrientation::Horizontal : DartOrientation::Vertical;
-    d.points = {DartWaypoint::at_position(tips[i])};
-    d.to_boundary = true;
-    darts.push_back(d);
-  }
-  return darts;
-}
+std::vector<DartSpec> hemisphere_darts() { return hemisphere_rim_darts(75.0, 40.0); }
 
 std::vector<DartSpec> saddle_darts(DartOrientation o = DartOrientation::Vertical) {
   DartSpec d;
