@@ -786,6 +786,10 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
       std::vector<std::pair<bool, bool>> ends(arcs.size());
       for (size_t j = 0; j < arcs.size(); ++j) ends[j] = {arcs[j].start_front, arcs[j].end_front};
       const int moved_before = out.moved_forks;
+      const std::vector<char> no_apex(out.samples.size(), 0);
+      int first_even = 0, last_even = ns - 1;
+      while (first_even < ns && !even(first_even)) ++first_even;
+      while (last_even >= 0 && !even(last_even)) --last_even;
       for (bool again = true; again;) {
         again = false;
         out.moved_forks = moved_before;
@@ -813,6 +817,14 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
           }
           return best;
         };
+        // A fork at arc parameter s goes to the nearest free sample (not
+        // already an apex of its type); none: the arc does not fork there.
+        auto snap_fork = [&](double s, const std::vector<char>& apex, bool& forks, int& sample) {
+          const int k = snap(s, apex);
+          if (k >= 0 && k != snap(s, no_apex)) ++out.moved_forks;
+          if (k < 0) forks = false;
+          else sample = k;
+        };
         for (size_t j = 0; j < arcs.size(); ++j) {
           Arc& a = arcs[j];
           if (ns < 3 || tiny[j]) {  // nothing on the left to fork from, or no wale
@@ -829,23 +841,8 @@ ColumnWales extract_column_wales(const TriMesh& mesh, const std::vector<double>&
               run_lo = -1;
             }
           }
-          if (a.start_front) {
-            int k = snap(a.s_start, increase_apex);
-            const int k0 = snap(a.s_start, std::vector<char>(out.samples.size(), 0));
-            if (k >= 0 && k != k0) ++out.moved_forks;
-            if (k < 0) a.start_front = false;
-            else lo = k;
-          }
-          if (a.end_front) {
-            int k = snap(a.s_end, decrease_apex);
-            const int k0 = snap(a.s_end, std::vector<char>(out.samples.size(), 0));
-            if (k >= 0 && k != k0) ++out.moved_forks;
-            if (k < 0) a.end_front = false;
-            else hi = k;
-          }
-          int first_even = 0, last_even = ns - 1;
-          while (first_even < ns && !even(first_even)) ++first_even;
-          while (last_even >= 0 && !even(last_even)) --last_even;
+          if (a.start_front) snap_fork(a.s_start, increase_apex, a.start_front, lo);
+          if (a.end_front) snap_fork(a.s_end, decrease_apex, a.end_front, hi);
           if (!a.start_front && a.end_front && lo < 0) lo = first_even;
           if (a.start_front && !a.end_front && hi < 0) hi = last_even;
           // A short column with both ends at forks needs 4 segments on the old
