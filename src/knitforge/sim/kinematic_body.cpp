@@ -99,21 +99,7 @@ void KinematicBody::move_to(const std::vector<Vec3>& vertices) {
 }
 
 std::optional<BodyPoint> KinematicBody::closest_point_within(const Vec3& p, double max_distance) const {
-  if (empty()) return std::nullopt;
-  BodyPoint best;
-  double best2 = max_distance * max_distance;
-  bool found = false;
-  tree_.nearest(p, best2, [&](int f, double& bound2) {
-    const TrianglePoint q = closest_on_face(mesh_, f, p);
-    const double d2 = (q.point - p).squaredNorm();
-    if (d2 < bound2 || (d2 == bound2 && (!found || f < best.face))) {
-      bound2 = d2;
-      best = {f, face_parts_[f], q, d2};
-      found = true;
-    }
-  });
-  if (!found) return std::nullopt;
-  return best;
+  return closest_point_of_part_within(p, -1, max_distance);
 }
 
 std::vector<BodyPoint> KinematicBody::closest_points_per_part_within(const Vec3& p, double max_distance) const {
@@ -146,16 +132,15 @@ std::vector<BodyPoint> KinematicBody::closest_points_per_part_within(const Vec3&
 std::optional<BodyPoint> KinematicBody::closest_point_of_part_within(const Vec3& p, int part,
                                                                      double max_distance) const {
   if (empty()) return std::nullopt;
-  if (num_parts_ == 1) return part == 0 ? closest_point_within(p, max_distance) : std::nullopt;
   BodyPoint best;
   bool found = false;
   tree_.nearest(p, max_distance * max_distance, [&](int f, double& bound2) {
-    if (face_parts_[f] != part) return;
+    if (part >= 0 && face_parts_[f] != part) return;
     const TrianglePoint q = closest_on_face(mesh_, f, p);
     const double d2 = (q.point - p).squaredNorm();
     if (d2 < bound2 || (d2 == bound2 && (!found || f < best.face))) {
       bound2 = d2;
-      best = {f, part, q, d2};
+      best = {f, face_parts_[f], q, d2};
       found = true;
     }
   });

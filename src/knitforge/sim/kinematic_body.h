@@ -63,7 +63,8 @@ class KinematicBody {
   /// (mm), in part order: one entry per such part (ties as above). For a
   /// one-part body, closest_point_within() as a list.
   std::vector<BodyPoint> closest_points_per_part_within(const Vec3& p, double max_distance) const;
-  /// The closest point of part `part` to p if it is within max_distance.
+  /// The closest point of part `part` to p if it is within max_distance
+  /// (part -1: of any part, as closest_point_within()).
   std::optional<BodyPoint> closest_point_of_part_within(const Vec3& p, int part, double max_distance) const;
   /// The point of `face` with barycentrics `bary` (mm).
   Vec3 point(int face, const Vec3& bary) const;
