@@ -288,11 +288,26 @@ ArapFlattenResult arap_flatten(const TriMesh& mesh, const ArapFlattenOptions& op
   out.initial_energy = energy;
   const double floor = 1e-14 * area_sq;
   bool has_constraints = !options.equal_x.empty() || !options.equal_y.empty();
+  const auto folded = [&] {
+    for (int f = 0; f < nf; ++f) {
+      if (!(signed_uv_area(mesh, uv, f) > 0.0)) return true;
+    }
+    return false;
+  };
+  int folded_in_a_row = 0;
   for (int it = 0; it < options.max_iterations; ++it) {
     global_step();
     const double next = local_step();
     ++out.iterations;
     if (options.on_iteration) options.on_iteration(out.iterations);
+    if (options.stop_after_folded_iterations > 0) {
+      folded_in_a_row = folded() ? folded_in_a_row + 1 : 0;
+      if (folded_in_a_row >= options.stop_after_folded_iterations) {
+        energy = next;
+        out.stopped_folded = true;
+        break;
+      }
+    }
     const double change = std::abs(energy - next);
     energy = next;
     // With constraints the first step may raise the energy (it enforces them).

@@ -48,6 +48,11 @@ struct ArapFlattenOptions {
   /// Called after every iteration with its number (1, 2, ...): progress for
   /// long runs. May be empty.
   std::function<void(int)> on_iteration;
+  /// > 0: stop (not converged, ArapFlattenResult::stopped_folded) once this
+  /// many iterations in a row have ended with a flipped face — for a caller
+  /// that replaces a folded result by a fold-free solver's anyway
+  /// (flatten_surface.h). 0: never; no flip test per iteration.
+  int stop_after_folded_iterations = 0;
 };
 
 struct ArapFlattenResult {
@@ -62,6 +67,8 @@ struct ArapFlattenResult {
   /// Faces whose 2D triangle is flipped or degenerate (signed area <= 0),
   /// ascending. Empty for a valid flattening.
   std::vector<int> flipped_faces;
+  /// Stopped by ArapFlattenOptions::stop_after_folded_iterations.
+  bool stopped_folded = false;
 };
 
 /// 2D coordinates of the corners of face f in an isometric frame of its 3D

@@ -126,7 +126,11 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
   arap.tolerance = options.tolerance;
   arap.initial = tutte_embedding(out.mesh).uv;
   const std::vector<Vec2> tutte = arap.initial;
+  // Without darts a folded ARAP pattern is replaced by the fold-free
+  // solver's (below), so ARAP need not run to convergence once it stays folded.
+  if (out.darts.empty()) arap.stop_after_folded_iterations = options.abandon_folded_arap_after;
   ArapFlattenResult first = arap_flatten(out.mesh, arap);
+  arap.stop_after_folded_iterations = 0;
   out.iterations = first.iterations;
   std::vector<Vec2> uv = align_pattern_to_reference(out.mesh, first.uv);
   const std::vector<Vec2> unconstrained = uv;

@@ -48,6 +48,13 @@ struct FlattenOptions {
   /// (|log σ| > 1.1: a factor of 3) nearly folds; it is recomputed by the
   /// injective solver, whose pattern is kept when its largest |log σ| is lower.
   double max_arap_log_sigma = 1.1;
+  /// Without darts, ARAP is abandoned once its pattern has stayed folded for
+  /// this many iterations in a row (the fold-free solver then computes the
+  /// pattern from Tutte's start, as for any folded ARAP result): ARAP's
+  /// remaining iterations would be discarded. A pattern that folds only
+  /// for a while and unfolds later is then the fold-free solver's too.
+  /// 0: ARAP always runs to convergence.
+  int abandon_folded_arap_after = 10;
   /// Told, now and then, which solver runs and its iteration ("ARAP,
   /// iteration 40 of at most 300"): progress for long runs. May be empty.
   std::function<void(const std::string&)> progress;
