@@ -37,8 +37,8 @@ TubeField tube_field(const TriMesh& mesh, const std::string& what) {
   if (rep.num_boundary_loops != 2 || rep.genus != 0) {
     throw InvalidInput(fmt::format(
         "{}: --tube needs a surface with exactly two boundary loops and no handle (a tube: sleeve, leg, "
-        "body), this one has {} boundary loop(s) and genus {}; design it without --tube (it is then cut "
-        "open by seams and knitted as a sheet)",
+        "body), this one has {} boundary loop(s) and genus {}; design it without --tube, as a sheet (more "
+        "loops or handles are then cut open by seams first)",
         what, rep.num_boundary_loops, rep.genus));
   }
   const Halfedges he = build_halfedges(mesh.num_vertices(), mesh.faces);
