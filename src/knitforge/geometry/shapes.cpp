@@ -422,7 +422,7 @@ TriMesh sleeve(const SleeveShape& s, double edge_length) {
                                    s.start_radius, s.end_radius, s.bend_radius));
   const double theta = s.bend_deg * kPi / 180.0, length = s.bend_radius * theta;
   const double mean = 0.5 * (s.start_radius + s.end_radius);
-  check_edge("sleeve", edge_length, std::min(2.0 * kPi * std::min(s.start_radius, s.end_radius) / 6.0, length),
+  check_edge("sleeve", edge_length, std::min(0.5 * kPi * std::min(s.start_radius, s.end_radius), length),
              2.0 * kPi * mean * length);
   // The straight tube of the mean radius (its ring vertex count),
   // mapped onto the sweep (ring k at arc fraction k / K).
