@@ -88,7 +88,8 @@ RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, cons
   int most = 0;
   for (size_t k = 0; k < rounds.size(); ++k) {
     t.ideal[k] = std::max(8, static_cast<int>(std::lround(rounds[k].length / params.stitch_width)));
-    most = std::max(most, t.ideal[k]);
+    // The rims take their inner round's count (below), so they do not widen the map.
+    if (K < 2 || (k > 0 && static_cast<int>(k) < K)) most = std::max(most, t.ideal[k]);
   }
   const int H = (most + 1) / 2, N = 2 * H;
   t.columns = N;
