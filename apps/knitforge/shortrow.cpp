@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.h"
+#include "shortrow_tube.h"
 #include "knitforge/convert/stitch_mesh_to_yarn.h"
 #include "knitforge/core/stitch.h"
 #include "knitforge/core/stitch_adjacency.h"
@@ -113,7 +114,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double bending = -1;
     double field_tolerance = -1;
     double max_stitches = kDefaultMaxStitches;
-    bool json = false, no_evaluate = false, ascii = false, no_report = false;
+    bool json = false, no_evaluate = false, ascii = false, no_report = false, tube = false;
     DesignMachineOptions mach;
   };
   auto o = std::make_shared<Opts>();
@@ -153,9 +154,37 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
+  cmd->add_flag("--tube", o->tube,
+                "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
+                "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam");
   add_design_machine_options(*cmd, o->mach);
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      if (o->tube) {
+        for (const auto& [given, name] : {std::pair<bool, const char*>{!o->source.empty(), "--source"},
+                                          {!o->cut.empty(), "--cut"},
+                                          {o->diffusion >= 0, "--diffusion"},
+                                          {o->lambda > 0, "--lambda"},
+                                          {o->field_tolerance >= 0, "--field-tolerance"}}) {
+          if (given) {
+            throw UsageError(fmt::format("--tube takes no {}: the rounds follow the field between the two rims; "
+                                         "leave it out (or drop --tube to knit the surface as a sheet)",
+                                         name));
+          }
+        }
+        TubeCommandOptions t;
+        t.input = o->input;
+        t.outdir = o->outdir;
+        t.stitch = o->stitch;
+        t.units = o->units;
+        t.edge = o->edge;
+        t.max_stitches = o->max_stitches;
+        t.json = o->json;
+        t.ascii = o->ascii;
+        t.no_report = o->no_report;
+        t.mach = o->mach;
+        return run_tube_design(t);
+      }
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);

@@ -7,10 +7,12 @@
 #include <ctime>
 #include <random>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "knitforge/convert/map_to_stitch_mesh.h"
 #include "knitforge/convert/random_knitting_map.h"
+#include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/util/errors.h"
 
@@ -343,3 +345,26 @@ TEST(StitchMeshToYarn, LargeSheetIsOneYarnFromFirstToLastStitch) {
   EXPECT_EQ(y.yarns[0].stitch.front(), 0);
   EXPECT_EQ(y.yarns[0].stitch.back(), side * side - 1);
 }
+
+namespace knitforge {
+namespace {
+
+TEST(StitchMeshToYarnTube, FollowsATubesStitchesInKnittingOrder) {
+  const KnitParams params;
+  const StitchMesh mesh = map_to_stitch_mesh_topology(tube_knitting_map(), params);  // 20 rounds of 24
+  const YarnModel y = stitch_mesh_to_yarn(mesh, params);
+  ASSERT_EQ(y.yarns.size(), 1u);
+  // Every stitch visited once, in index order (the knitting order of a tube's stitch mesh).
+  std::vector<int> order;
+  for (int s : y.yarns[0].stitch)
+    if (order.empty() || order.back() != s) order.push_back(s);
+  ASSERT_EQ(static_cast<int>(order.size()), mesh.num_stitches());
+  for (int i = 0; i < mesh.num_stitches(); ++i) ASSERT_EQ(order[static_cast<size_t>(i)], i);
+  // Stitches out of knitting order (two far-apart stitches swapped) are refused.
+  StitchMesh shuffled = mesh;
+  std::swap(shuffled.stitches[5], shuffled.stitches[300]);
+  EXPECT_THROW(stitch_mesh_to_yarn(shuffled, params), TopologyError);
+}
+
+}  // namespace
+}  // namespace knitforge

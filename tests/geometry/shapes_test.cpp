@@ -330,14 +330,47 @@ TEST(Shapes, CapIsASphereWithTwoOpenings) {
   EXPECT_THROW(cap(tiny, 5.0), InvalidInput);
 }
 
+TEST(Shapes, SleeveIsATaperedBentTubeWithOutwardNormals) {
+  const SleeveShape s;
+  const TriMesh m = sleeve(s, 4.0);
+  const SurfaceReport r = validate_surface(m);
+  ASSERT_TRUE(r.ok() && r.num_boundary_loops == 2 && r.genus == 0) << r.summary();
+  const double theta = s.bend_deg * std::numbers::pi / 180.0, L = s.bend_radius * theta;
+  // Every vertex at its cross-section's radius from the arc axis (centre (R, 0, 0), plane y = 0).
+  double outward = 0.0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Vec3 c = (m.vertices[m.faces[f][0]] + m.vertices[m.faces[f][1]] + m.vertices[m.faces[f][2]]) / 3.0;
+    const double phi = std::atan2(c.z(), s.bend_radius - c.x());
+    const Vec3 axis(s.bend_radius * (1.0 - std::cos(phi)), 0.0, s.bend_radius * std::sin(phi));
+    outward += face_normal(m, f).dot((c - axis).normalized()) > 0.0 ? 1.0 : -1.0;
+  }
+  EXPECT_EQ(outward, m.num_faces()) << "some normals point inward";
+  for (const Vec3& p : m.vertices) {
+    const double phi = std::atan2(p.z(), s.bend_radius - p.x());
+    const Vec3 axis(s.bend_radius * (1.0 - std::cos(phi)), 0.0, s.bend_radius * std::sin(phi));
+    const double t = phi / theta;
+    ASSERT_GT(t, -1e-9);
+    ASSERT_LT(t, 1.0 + 1e-9);
+    EXPECT_NEAR((p - axis).norm(), s.start_radius + (s.end_radius - s.start_radius) * t, 1e-6);
+  }
+  // Pappus: area = 2 pi r_mean L (the taper changes it by a factor 1 + O(((r1 - r0) / L)^2)).
+  EXPECT_NEAR(total_area(m) / (std::numbers::pi * (s.start_radius + s.end_radius) * L), 1.0, 0.01);
+  SleeveShape bad;
+  bad.start_radius = 400.0;
+  EXPECT_THROW(sleeve(bad, 5.0), InvalidInput);
+  bad = {};
+  bad.bend_deg = 0.0;
+  EXPECT_THROW(sleeve(bad, 5.0), InvalidInput);
+}
+
 TEST(Shapes, MakeShapeByNameIsDeterministic) {
   const auto names = shape_names();
-  ASSERT_EQ(names.size(), 8u);
+  ASSERT_EQ(names.size(), 9u);
   for (const auto& name : names) {
     const TriMesh a = make_shape(name, 8.0);
     const TriMesh b = make_shape(name, 8.0);
     const SurfaceReport r = validate_surface(a);
-    if (name == "cap" || name == "tube") {
+    if (name == "cap" || name == "tube" || name == "sleeve") {
       EXPECT_TRUE(r.ok() && r.num_boundary_loops == 2 && r.genus == 0) << name << ": " << r.summary();
     } else {
       EXPECT_TRUE(r.is_disk) << name;

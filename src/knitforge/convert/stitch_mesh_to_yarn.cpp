@@ -196,21 +196,40 @@ YarnModel stitch_mesh_to_yarn(const StitchMesh& mesh, const KnitParams& params, 
   for (int s = 0; s < n && first < 0; ++s) {
     if (adj.previous_stitch(s) < 0) first = s;
   }
-  if (first < 0) {
-    throw TopologyError("the stitch mesh has no first stitch: every stitch has a previous one, so the knitting order "
-                        "is a closed loop (a cyclic course or wale); run check_knittability for details");
-  }
   std::vector<int> order;
   order.reserve(n);
-  std::vector<char> seen(n, 0);
-  for (int s = first; s >= 0; s = adj.next_stitch(s)) {
-    if (seen[s]) {
-      throw TopologyError(fmt::format("the knitting order returns to stitch {} after stitch {}; it must visit every "
-                                      "stitch once (run check_knittability)",
-                                      s, order.back()));
+  if (first < 0) {
+    // A tube (every course a round): no stitch starts the one-stroke order by
+    // adjacency; its stitches are numbered in knitting order (as
+    // map_to_stitch_mesh_topology() and the tube route number them), so
+    // the yarn follows the index order when each stitch touches the next.
+    auto touch = [&](int a, int b) {
+      const Stitch &sa = mesh.stitches[a], &sb = mesh.stitches[b];
+      for (int i = 0; i < sa.corners(); ++i)
+        for (int j = 0; j < sb.corners(); ++j)
+          if (sa.v[i] == sb.v[j]) return true;
+      return false;
+    };
+    for (int s = 0; s < n; ++s) {
+      if (s > 0 && !touch(s - 1, s)) {
+        throw TopologyError(fmt::format(
+            "the stitch mesh has no first stitch (every stitch has a previous one: a tube), and stitch {} does not "
+            "touch stitch {}, so the stitches are not numbered in knitting order; run check_knittability",
+            s, s - 1));
+      }
+      order.push_back(s);
     }
-    seen[s] = 1;
-    order.push_back(s);
+  } else {
+    std::vector<char> seen(n, 0);
+    for (int s = first; s >= 0; s = adj.next_stitch(s)) {
+      if (seen[s]) {
+        throw TopologyError(fmt::format("the knitting order returns to stitch {} after stitch {}; it must visit every "
+                                        "stitch once (run check_knittability)",
+                                        s, order.back()));
+      }
+      seen[s] = 1;
+      order.push_back(s);
+    }
   }
   if (static_cast<int>(order.size()) != n) {
     throw TopologyError(fmt::format("the knitting order stops at stitch {} after {} of {} stitches; the yarn cannot "

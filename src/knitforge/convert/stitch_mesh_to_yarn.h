@@ -84,6 +84,12 @@ Vec3 deform_canonical_point(const StitchMesh& mesh, int s, const CanonicalPoint&
 /// one yarn that are not mesh
 /// neighbours (the yarn was idle in between) are joined by a straight segment.
 ///
+/// Tubes (docs/tubes.md): when every stitch has a predecessor (every course
+/// a round, so the order cannot start from adjacency), the stitches are
+/// taken in index order, which is the knitting order of a tube's stitch
+/// mesh (map_to_stitch_mesh_topology(), the tube design route); each stitch
+/// must then touch the next one.
+///
 /// \pre the mesh is knittable in one stroke (check_knittability reports no
 ///      between-row-continuity violation).
 /// \throw TopologyError when the mesh is not a manifold stitch mesh or its

@@ -411,6 +411,33 @@ TriMesh open_tube(double radius, double height, double edge_length) {
   return tube_rings(radius, height, edge_length);
 }
 
+TriMesh sleeve(const SleeveShape& s, double edge_length) {
+  check_size("sleeve", "start radius", s.start_radius);
+  check_size("sleeve", "end radius", s.end_radius);
+  check_size("sleeve", "bend radius", s.bend_radius);
+  if (!(s.bend_deg > 0.0 && s.bend_deg <= 180.0))
+    throw InvalidInput(fmt::format("sleeve: the bend angle must be in (0, 180] degrees, got {}", s.bend_deg));
+  if (!(std::max(s.start_radius, s.end_radius) < s.bend_radius))
+    throw InvalidInput(fmt::format("sleeve: the radii ({} and {} mm) must be below the bend radius ({} mm)",
+                                   s.start_radius, s.end_radius, s.bend_radius));
+  const double theta = s.bend_deg * kPi / 180.0, length = s.bend_radius * theta;
+  const double mean = 0.5 * (s.start_radius + s.end_radius);
+  check_edge("sleeve", edge_length, std::min(0.5 * kPi * std::min(s.start_radius, s.end_radius), length),
+             2.0 * kPi * mean * length);
+  // The straight tube of the mean radius (its ring vertex count),
+  // mapped onto the sweep (ring k at arc fraction k / K).
+  TriMesh m = tube_rings(mean, length, edge_length);
+  for (Vec3& p : m.vertices) {
+    const double t = std::clamp(p.z() / length, 0.0, 1.0), phi = theta * t;
+    const double r = s.start_radius + (s.end_radius - s.start_radius) * t;
+    const double a = std::atan2(p.y(), p.x());
+    const Vec3 centre(s.bend_radius * (1.0 - std::cos(phi)), 0.0, s.bend_radius * std::sin(phi));
+    const Vec3 inward(std::cos(phi), 0.0, -std::sin(phi));  // toward the bend centre; inward x y = the axis
+    p = centre + r * (std::cos(a) * inward + std::sin(a) * Vec3(0.0, 1.0, 0.0));
+  }
+  return m;
+}
+
 TriMesh cap(const CapShape& c, double edge_length) {
   check_size("cap", "radius", c.radius);
   for (const auto& [name, a] : {std::pair<const char*, double>{"face angle", c.face_angle_deg},
@@ -492,7 +519,7 @@ TriMesh cap(const CapShape& c, double edge_length) {
 }
 
 std::vector<std::string> shape_names() {
-  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube"};
+  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube", "sleeve"};
 }
 
 TriMesh make_shape(std::string_view name, double edge_length) {
@@ -504,6 +531,7 @@ TriMesh make_shape(std::string_view name, double edge_length) {
   if (name == "cylinder-patch") return cylinder_patch(50.0, kPi, 100.0, edge_length);
   if (name == "cap") return cap(CapShape{}, edge_length);
   if (name == "tube") return open_tube(40.0, 100.0, edge_length);
+  if (name == "sleeve") return sleeve(SleeveShape{}, edge_length);
   std::string names;
   for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
   throw InvalidInput(fmt::format("unknown shape '{}'; the built-in shapes are: {}", name, names));

@@ -91,6 +91,28 @@ TriMesh cylinder_patch(double radius = 50.0, double angle = 3.141592653589793238
 /// mirror-symmetric about the plane x = 0.
 TriMesh open_tube(double radius = 40.0, double height = 100.0, double edge_length = kDefaultShapeEdgeLength);
 
+/// Parameters of sleeve() (mm and degrees).
+struct SleeveShape {
+  double start_radius = 50.0;  ///< radius of the tube at its start (the upper arm)
+  double end_radius = 30.0;    ///< radius at its end (the wrist)
+  double bend_radius = 300.0;  ///< radius of the circular arc the axis follows
+  double bend_deg = 50.0;      ///< angle of that arc (0 < angle <= 180)
+};
+
+/// A sleeve: a tapered, bent tube, the circle of radius r(t) = start +
+/// (end - start) t swept along a circular arc of the axis (t in [0, 1]
+/// along the arc). The axis starts at the origin along +z and bends toward
+/// +x round the centre (bend_radius, 0, 0) in the plane y = 0 (its mirror
+/// plane); the cross-sections are normal to the axis. An annulus (two
+/// boundary loops, both exact circles), normals outward. With the
+/// defaults: axis 262 mm long, circumference 314 mm at the start and 188 mm
+/// at the end; area 2π r_mean L (Pappus) ≈ 65,800 mm². Built like
+/// open_tube(): staggered rings of n = max(6, round(2π r_mean / l))
+/// vertices, round(L / (√3/2 l)) + 1 rings, mapped onto the sweep.
+/// 	hrow InvalidInput (besides the common conditions) when a radius is
+///        not below the bend radius or the angle is not in (0, 180].
+TriMesh sleeve(const SleeveShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
+
 /// Parameters of cap() (mm and degrees).
 struct CapShape {
   double radius = 90.0;  ///< radius of the head sphere, centred at the origin
@@ -121,7 +143,8 @@ TriMesh cap(const CapShape& shape = {}, double edge_length = kDefaultShapeEdgeLe
 /// Names accepted by make_shape(), with their default sizes:
 /// hemisphere (r 75), triple-peak (150 x 100), monkey-saddle (100 x 100 x 100),
 /// disk (r 50), rectangle (150 x 100), cylinder-patch (r 50, 180°, height 100),
-/// cap (CapShape defaults: r 90, two openings), tube (r 40, height 100, open).
+/// cap (CapShape defaults: r 90, two openings), tube (r 40, height 100, open),
+/// sleeve (SleeveShape defaults: r 50 to 30, bent 50° round a 300 mm arc).
 std::vector<std::string> shape_names();
 
 /// The named shape at its default size, meshed with the given edge length.

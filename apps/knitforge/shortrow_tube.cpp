@@ -1,0 +1,135 @@
+// knitforge shortrow --tube (see shortrow_tube.h).
+#include "shortrow_tube.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <future>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "knitforge/convert/stitch_mesh_to_yarn.h"
+#include "knitforge/core/stitch.h"
+#include "knitforge/design/tube/design_tube.h"
+#include "knitforge/evaluate/scalar_colours.h"
+#include "knitforge/io/knittability_json.h"
+#include "knitforge/io/knitting_map_csv.h"
+#include "knitforge/io/knitting_map_image.h"
+#include "knitforge/io/mesh_io.h"
+#include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/stitch_mesh_ply.h"
+#include "knitforge/report/report_html.h"
+#include "knitforge/util/timer.h"
+
+namespace knitforge::cli {
+
+int run_tube_design(const TubeCommandOptions& o) {
+  Timer all;
+  const KnitParams params = parse_stitch_size(o.stitch);
+  check_output_dir("-o", o.outdir, {o.input});
+  std::string description;
+  const TriMesh input = load_design_surface(o.input, o.units, o.edge, description, nullptr, nullptr);
+  check_surface_stitches(input, description, params, o.max_stitches, 2500.0);
+  TubeDesignOptions opt;
+  opt.params = params;
+  opt.surface_name = description;
+  auto begun = std::make_shared<int>(0);
+  opt.progress = [begun](const std::string& stage) { note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / 5, stage)); };
+  const TubeDesign d = design_tube(input, opt);
+
+  note("writing outputs ...");
+  Timer t;
+  const std::filesystem::path dir(o.outdir);
+  std::filesystem::create_directories(dir);
+  auto out = [&](const char* name) { return (dir / name).string(); };
+  StitchMeshPlyOptions ply;
+  ply.ascii = o.ascii;
+  write_stitch_mesh_ply(out("stitch_mesh.ply"), d.stitch_mesh, ply);
+  std::future<void> second = std::async(std::launch::async, [&d, &out] {
+    write_knitting_map_png(out("knitting_map.png"), d.map);
+    write_knitting_map_svg(out("knitting_map.svg"), d.map);
+  });
+  const bool knittable = d.map_check.ok() && d.mesh_check.ok();
+  if (d.mesh_check.ok()) write_yarn_obj(out("yarn.obj"), stitch_mesh_to_yarn(d.stitch_mesh, params));
+  write_knitting_map_csv(out("knitting_map.csv"), d.map);
+  std::vector<std::vector<Vec3>> rounds;
+  for (const RoundCurve& r : d.rounds) {
+    rounds.push_back(r.points);
+    rounds.back().push_back(r.points.front());
+  }
+  write_polylines_obj(out("rounds.obj"), rounds);
+  {
+    MeshWriteOptions w;
+    w.ascii = o.ascii;
+    for (const Rgb8& c : scalar_colours(d.field.value, 0.0, 1.0)) w.vertex_colours.push_back({c[0], c[1], c[2]});
+    write_mesh(out("field.ply"), input, w);
+    MeshWriteOptions plain;
+    plain.ascii = o.ascii;
+    write_mesh(out("target.ply"), input, plain);
+  }
+  const auto types = count_stitch_types(d.stitch_mesh);
+  int off_by_more = 0;
+  for (size_t k = 0; k < d.round_stitches.size(); ++k)
+    off_by_more += std::abs(d.round_stitches[k] - d.ideal_stitches[k]) > 1 ? 1 : 0;
+  const double expected = d.surface_area / (params.stitch_width * params.stitch_height);
+  nlohmann::json report;
+  report["input"] = {{"surface", description},
+                     {"units", o.units},
+                     {"vertices", input.num_vertices()},
+                     {"faces", input.num_faces()},
+                     {"boundary_loops", 2},
+                     {"genus", 0},
+                     {"area_mm2", d.surface_area}};
+  report["route"] = "tube";
+  report["parameters"] = {{"stitch_width_mm", params.stitch_width}, {"stitch_height_mm", params.stitch_height}};
+  report["field"] = {{"kind", "harmonic, 0 on the start rim, 1 on the end rim"},
+                     {"start_rim_mm", d.field.start_length},
+                     {"end_rim_mm", d.field.end_length},
+                     {"interior_extrema", d.field.interior_extrema},
+                     {"mean_rim_to_rim_mm", d.levels.mean_length}};
+  report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
+                      {"quads", types[static_cast<int>(StitchType::Knit)]},
+                      {"increases", d.increases},
+                      {"decreases", d.decreases},
+                      {"short_row_ends", 0},
+                      {"expected_stitches_area", expected},
+                      {"stitches_vs_area", d.stitch_mesh.num_stitches() / expected - 1.0},
+                      {"rounds", static_cast<int>(d.rounds.size())},
+                      {"courses", d.map.rows},
+                      {"map_columns", d.map.cols},
+                      {"round_stitches", d.round_stitches},
+                      {"ideal_round_stitches", d.ideal_stitches},
+                      {"rounds_off_ideal_by_more_than_1", off_by_more}};
+  report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
+  Timer tm;
+  bool machine_ok = true;
+  nlohmann::json machine_check;
+  report["machine"] = design_machine_end(o.mach, o.outdir, d.map, knittable, &d.stitch_mesh, machine_ok, machine_check);
+  if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
+  const double machine_seconds = tm.seconds();
+  report["knittable"] = knittable && machine_ok;
+  second.get();
+  report["seconds"] = {{"field", d.seconds.field},       {"rounds", d.seconds.rounds},
+                       {"tessellation", d.seconds.tessellation}, {"map", d.seconds.map},
+                       {"knittability", d.seconds.check}, {"design_total", d.seconds.total},
+                       {"machine", machine_seconds},      {"output", t.seconds() - machine_seconds}};
+  report["seconds"]["total"] = all.seconds();
+  write_report_json(out("report.json"), report, o.json);
+  if (!o.no_report) {
+    write_report_html(o.outdir);
+    note("report page -> " + out("report.html"));
+  }
+  note(fmt::format("tube: {} stitches in {} rounds x {} columns ({} to {} stitches round), {} increases, {} decreases; "
+                   "{:.2f} s -> {}",
+                   d.stitch_mesh.num_stitches(), d.map.rows, d.map.cols, d.round_stitches.front(),
+                   d.round_stitches.back(), d.increases, d.decreases, all.seconds(), o.outdir));
+  if (!knittable) {
+    const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
+    std::fprintf(stderr, "%s", r.text().c_str());
+    note("the design is NOT knittable (details in report.json); outputs were written for inspection");
+    return 1;
+  }
+  return machine_exit_code(machine_ok, o.mach.machine);
+}
+
+}  // namespace knitforge::cli

@@ -1,0 +1,72 @@
+#pragma once
+/// \file design_tube.h
+/// The tube design route (seed §3.3.8, issue #15 item 2; docs/tubes.md,
+/// "Design"): a surface with two boundary loops (an annulus) -> a tubular
+/// stitch mesh whose courses are closed rounds -> a tubular knitting map.
+///
+///  1. field: the harmonic u, 0 on the start rim (the longer one), 1 on the
+///     other (tube_field.h); every level is one closed loop;
+///  2. rounds: levels one stitch height apart on average (round_levels()),
+///     extracted as closed isocurves, oriented and started at the seam
+///     (tube_rounds.h);
+///  3. tessellation: each round sampled at its stitch count, wales traced
+///     as column labels with increases and decreases where the count
+///     changes (tessellate_rounds.h);
+///  4. knitting map (stitch_mesh_to_map(), read as a tube from the wale
+///     labels) and both knittability checks (the mesh check with closed
+///     courses).
+///
+/// Every round goes once round the whole tube: no short rows yet (a bent
+/// tube's rounds are closer on the inside of the bend than on the outside;
+/// see docs/tubes.md for what that leaves).
+/// Deterministic.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "knitforge/core/knit_params.h"
+#include "knitforge/core/knittability.h"
+#include "knitforge/core/knitting_map.h"
+#include "knitforge/core/stitch_mesh.h"
+#include "knitforge/design/tube/tessellate_rounds.h"
+#include "knitforge/design/tube/tube_field.h"
+#include "knitforge/design/tube/tube_rounds.h"
+#include "knitforge/geometry/tri_mesh.h"
+
+namespace knitforge {
+
+/// Options of design_tube().
+struct TubeDesignOptions {
+  KnitParams params;
+  /// Called at the start of every stage with its name (progress reports).
+  std::function<void(const std::string&)> progress;
+  std::string surface_name = "the surface";  ///< names the surface in messages
+};
+
+/// Wall-clock seconds per stage.
+struct TubeTimings {
+  double field = 0, rounds = 0, tessellation = 0, map = 0, check = 0, total = 0;
+};
+
+/// Everything the route produces.
+struct TubeDesign {
+  TubeField field;
+  RoundLevels levels;
+  std::vector<RoundCurve> rounds;
+  std::vector<int> round_stitches;  ///< per round (RoundsTessellation::stitches)
+  std::vector<int> ideal_stitches;  ///< per round (RoundsTessellation::ideal)
+  int increases = 0, decreases = 0;
+  StitchMesh stitch_mesh;  ///< course = round row, wale = map column
+  KnittingMap map;         ///< tubular
+  KnittabilityReport mesh_check, map_check;
+  double surface_area = 0.0;  ///< mm^2
+  TubeTimings seconds;
+};
+
+/// Runs the route on `surface` (mm).
+/// \throw InvalidInput when the surface is not an annulus (tube_field()) or
+///        a round is not one closed loop; SolverError from the field.
+TubeDesign design_tube(const TriMesh& surface, const TubeDesignOptions& options);
+
+}  // namespace knitforge

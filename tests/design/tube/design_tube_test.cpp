@@ -1,0 +1,99 @@
+// The tube design route (design/tube): annulus -> rounds -> tubular map.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "knitforge/core/stitch.h"
+#include "knitforge/design/tube/design_tube.h"
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/util/errors.h"
+
+namespace knitforge {
+namespace {
+
+// Stitch cells of map row r.
+int row_stitches(const KnittingMap& m, int r) {
+  int n = 0;
+  for (int c = 0; c < m.cols; ++c) n += is_stitch(m.at(r, c)) ? 1 : 0;
+  return n;
+}
+
+int count_cells(const KnittingMap& m, CellType t) {
+  int n = 0;
+  for (CellType c : m.cells) n += c == t ? 1 : 0;
+  return n;
+}
+
+TEST(DesignTube, StraightTubeHasRoundsOfCircumferenceOverWidthAndNoShaping) {
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const TubeDesign d = design_tube(open_tube(40.0, 100.0, 2.5), o);
+  EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+  EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  ASSERT_TRUE(d.map.tubular());
+  const int expected = static_cast<int>(std::lround(2.0 * std::numbers::pi * 40.0 / 3.5));  // 72
+  EXPECT_EQ(d.map.rows, static_cast<int>(std::lround(100.0 / 2.8)));                         // 36 rounds
+  for (int r = 0; r < d.map.rows; ++r) {
+    EXPECT_TRUE(d.map.closed(r)) << "row " << r;
+    EXPECT_NEAR(row_stitches(d.map, r), expected, 1) << "row " << r;
+  }
+  EXPECT_EQ(d.increases + d.decreases, 0);
+  EXPECT_EQ(count_cells(d.map, CellType::Increase) + count_cells(d.map, CellType::Decrease), 0);
+  EXPECT_EQ(d.field.interior_extrema, 0);
+  // Every stitch corner lies on the cylinder (rounds are isocurves on it).
+  for (const Vec3& p : d.stitch_mesh.vertices) EXPECT_NEAR(std::hypot(p.x(), p.y()), 40.0, 0.05);
+}
+
+TEST(DesignTube, SleeveIsKnittableAndItsRoundsFollowTheCircumference) {
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const SleeveShape s;
+  const TubeDesign d = design_tube(sleeve(s, 4.0), o);
+  EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+  EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  ASSERT_TRUE(d.map.tubular());
+  // Rounds one stitch height apart along the axis's 262 mm.
+  const double axis = s.bend_radius * s.bend_deg * std::numbers::pi / 180.0;
+  EXPECT_NEAR(d.map.rows, axis / 2.8, 1.0);
+  // Round r's stitches: its circumference (radius linear along the axis) over the width, +-1; the
+  // rim rows take their inner round's count.
+  for (int r = 1; r + 1 < d.map.rows; ++r) {
+    const double t = (r + 0.5) / d.map.rows;
+    const double circ = 2.0 * std::numbers::pi * (s.start_radius + (s.end_radius - s.start_radius) * t);
+    EXPECT_NEAR(row_stitches(d.map, r), circ / 3.5, 1.6) << "row " << r;
+  }
+  EXPECT_GT(row_stitches(d.map, 0), row_stitches(d.map, d.map.rows - 1) + 30);  // 89 -> 54
+  EXPECT_EQ(d.increases, 0);
+  EXPECT_EQ(d.decreases, row_stitches(d.map, 0) - row_stitches(d.map, d.map.rows - 1));
+  EXPECT_EQ(count_cells(d.map, CellType::Decrease), d.decreases);
+}
+
+TEST(DesignTube, RefusesASurfaceWithoutTwoBoundaryLoops) {
+  TubeDesignOptions o;
+  o.surface_name = "hemisphere";
+  try {
+    design_tube(hemisphere(75.0, 5.0), o);
+    FAIL() << "a disk was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("exactly two boundary loops"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 boundary loop"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DesignTube, NarrowingTubeStartsAtTheLongerRimWhicheverLoopComesFirst) {
+  // The sleeve turned upside down (z -> -z, faces reversed to keep normals outward): still cast on
+  // at the wide rim, shaped by decreases only.
+  TriMesh m = sleeve(SleeveShape{}, 5.0);
+  for (Vec3& p : m.vertices) p.z() = -p.z();
+  for (auto& f : m.faces) std::swap(f[1], f[2]);
+  TubeDesignOptions o;
+  const TubeDesign d = design_tube(m, o);
+  EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  EXPECT_GT(d.field.start_length, d.field.end_length);
+  EXPECT_EQ(d.increases, 0);
+  EXPECT_GT(d.decreases, 30);
+}
+
+}  // namespace
+}  // namespace knitforge
