@@ -217,6 +217,29 @@ nlohmann::json evaluation_json(const StitchMeshEvaluation& ev);
 /// machine_ok) and returns the exit code, 0 or 1.
 int machine_exit_code(bool machine_ok, const std::string& machine);
 
+/// The design routes' converged predicted shape (docs/evaluate.md): after
+/// the design, the free static equilibrium of the stitch mesh by the fabric
+/// simulator (as `knitforge predict DESIGN_DIR`, same solver options and the
+/// same shape-error measure: rigid fit to the design, then ICP onto the
+/// target). Runs by default when the design has at most
+/// kDesignPredictMaxStitches stitches (a converged free prediction costs
+/// ~15 ms CPU per stitch at 3.7k stitches, docs/benchmarks.md); --predict
+/// forces it, --no-predict skips it.
+constexpr int kDesignPredictMaxStitches = 1500;
+struct DesignPredictOptions {
+  bool force = false, skip = false;
+  int max_iterations = 500;
+};
+/// Adds --predict, --no-predict and --predict-max-iterations to cmd.
+void add_design_predict_options(CLI::App& cmd, DesignPredictOptions& options);
+/// The "prediction" section of report.json (null when it did not run, with
+/// a note saying why); writes OUTDIR/predicted.ply (aligned to the target)
+/// when it converged. An unconverged prediction reports converged = false
+/// and no shape error. `summary` receives the CLI line.
+nlohmann::json design_prediction(const DesignPredictOptions& options, const std::string& outdir,
+                                 const StitchMesh& designed, const KnitParams& params, const TriMesh& target,
+                                 bool ascii, std::string& summary);
+
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);
 

@@ -116,6 +116,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false, tube = false;
     DesignMachineOptions mach;
+    DesignPredictOptions predict;
   };
   auto o = std::make_shared<Opts>();
   const std::string names = shape_name_list();
@@ -158,6 +159,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
                 "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
                 "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam");
   add_design_machine_options(*cmd, o->mach);
+  add_design_predict_options(*cmd, o->predict);
   cmd->callback([=, &action] {
     action = [=]() -> int {
       if (o->tube) {
@@ -276,7 +278,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
       if (d.evaluation) {
         write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
         report["evaluation"] = evaluation_json(*d.evaluation);
+        report["evaluation"]["predictor"] = "Shape-Up preview (not a converged shape)";
       }
+      std::string prediction_note;
+      DesignPredictOptions po = o->predict;
+      po.skip = po.skip || (o->no_evaluate && !po.force);
+      report["prediction"] = design_prediction(po, o->outdir, d.stitch_mesh, params, surface, o->ascii, prediction_note);
       const auto types = count_stitch_types(d.stitch_mesh);
       const int short_row_ends = types[static_cast<int>(StitchType::ShortRowLeft)] +
                                  types[static_cast<int>(StitchType::ShortRowRight)];
@@ -362,10 +369,11 @@ void add_shortrow_command(CLI::App& app, Action& action) {
           d.stitch_mesh.num_stitches(), short_row_ends, d.map.rows, d.map.cols, d.wales.num_wales(),
           d.wales.cuts.size(), all.seconds(), o->outdir));
       if (d.evaluation) {
-        note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
+        note(fmt::format("preview (Shape-Up) shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
                          d.evaluation->rms_error, d.evaluation->max_error,
                          100 * d.evaluation->relative_rms_error, 100 * d.evaluation->relative_max_error));
       }
+      if (!prediction_note.empty()) note(prediction_note);
       if (!(d.map_check.ok() && d.mesh_check.ok())) {
         const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
         std::fprintf(stderr, "%s", r.text().c_str());
