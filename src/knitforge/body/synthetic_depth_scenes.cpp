@@ -28,7 +28,7 @@ DepthRig seed_depth_rig(double distance_mm, double height_mm) {
   DepthCamera cam;
   cam.width = 480;
   cam.height = 640;
-  cam.K << 320.0, 0.0, 239.5, 0.0, 320.0, 319.5, 0.0, 0.0, 1.0;
+  cam.K << 280.0, 0.0, 239.5, 0.0, 280.0, 319.5, 0.0, 0.0, 1.0;
   cam.depth_unit_mm = 1.0;
   DepthRig rig;
   rig.camera1 = rig.camera2 = cam;

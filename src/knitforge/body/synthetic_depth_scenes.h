@@ -31,9 +31,9 @@ struct DepthRig {
 /// looking back along -y, set up by hand: 60 mm to the side, 40 mm higher,
 /// turned by 3° (yaw), -4° (pitch), 1.5° (roll), so the calibration has
 /// something to find. Both cameras: 480 x 640 pixels (portrait), fx = fy =
-/// 320 px (90° vertical field of view: a 1.8 m person at 1 m fits), 1 mm
-/// depth units.
-DepthRig seed_depth_rig(double distance_mm = 2000.0, double height_mm = 1000.0);
+/// 280 px (98° vertical field of view, as a wide-angle depth camera's: a
+/// 1.8 m person, feet to head, fits at 0.85 m), 1 mm depth units.
+DepthRig seed_depth_rig(double distance_mm = 2000.0, double height_mm = 900.0);
 
 /// Camera 2's frame to camera 1's: what calibration finds.
 RigidTransform camera2_to_camera1(const DepthRig& rig);
