@@ -3,6 +3,7 @@
 //   knitforge body fit SCAN [--keypoints K.json] -o fitted/
 //   knitforge body region fitted/|BODY.obj --part torso-front -o panel.obj
 //   knitforge body transfer GARMENT.obj --from A --to B -o out.obj
+//   knitforge body render-depth / calibrate / fuse: body_depth.cpp
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -439,6 +440,7 @@ void add_body_command(CLI::App& app, Action& action) {
   transfer->add_option("--units", t->units, "Units of the garment: mm (default), cm, m (the output is in mm)")
       ->check(CLI::IsMember({"mm", "cm", "m"}));
   transfer->callback([t, &action] { action = [t] { return run_transfer(*t); }; });
+  add_body_depth_commands(*body, action);
 }
 
 }  // namespace knitforge::cli

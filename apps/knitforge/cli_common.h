@@ -49,6 +49,8 @@ void add_thicken_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
 void add_predict_command(CLI::App& app, Action& action);
 void add_body_command(CLI::App& app, Action& action);
+/// body render-depth / calibrate / fuse (body_depth.cpp), on the body command.
+void add_body_depth_commands(CLI::App& body, Action& action);
 void add_cloth_command(CLI::App& app, Action& action);
 
 /// A usage error found after parsing (a missing, empty or malformed

@@ -4,42 +4,12 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/body/json_values.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
 
-namespace {
-
-double number(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_number()) throw InvalidInput(fmt::format("{}: expected a number, found {}", where, j.dump()));
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) throw InvalidInput(fmt::format("{}: not a finite number", where));
-  return v;
-}
-
-template <int N>
-Eigen::Matrix<double, N, 1> vec(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || static_cast<int>(j.size()) != N)
-    throw InvalidInput(fmt::format("{}: expected {} numbers, found {}", where, N, j.dump()));
-  Eigen::Matrix<double, N, 1> v;
-  for (int i = 0; i < N; ++i) v(i) = number(j[static_cast<size_t>(i)], where);
-  return v;
-}
-
-Mat3 mat(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3)
-    throw InvalidInput(fmt::format("{}: expected a 3 x 3 matrix as three rows of three numbers", where));
-  Mat3 m;
-  for (int r = 0; r < 3; ++r) m.row(r) = vec<3>(j[static_cast<size_t>(r)], fmt::format("{} row {}", where, r)).transpose();
-  return m;
-}
-
-const nlohmann::json& field(const nlohmann::json& j, const char* key, const std::string& where) {
-  if (!j.is_object() || !j.contains(key)) throw InvalidInput(fmt::format("{}: missing \"{}\"", where, key));
-  return j.at(key);
-}
-
-}  // namespace
+using json_values::field;
 
 std::vector<KeypointView> keypoint_views_from_json(const nlohmann::json& json, const std::string& what) {
   double scale = 1.0;
@@ -60,17 +30,14 @@ std::vector<KeypointView> keypoint_views_from_json(const nlohmann::json& json, c
     v.name = jc.is_object() && jc.contains("name") && jc.at("name").is_string() ? jc.at("name").get<std::string>()
                                                                                 : fmt::format("{}", c);
     const std::string where = fmt::format("{}: camera {} ('{}')", what, c, v.name);
-    v.camera.K = mat(field(jc, "K", where), where + " K");
-    v.camera.R = mat(field(jc, "R", where), where + " R");
-    v.camera.t = scale * vec<3>(field(jc, "t", where), where + " t");
-    const Mat3& R = v.camera.R;
-    if (!((R * R.transpose() - Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6) || !(R.determinant() > 0.0))
-      throw InvalidInput(fmt::format("{}: R is not a rotation (orthonormal with determinant +1)", where));
+    v.camera.K = json_values::mat3(field(jc, "K", where), where + " K");
+    v.camera.R = json_values::rotation(field(jc, "R", where), where + ": R");
+    v.camera.t = scale * json_values::vec3(field(jc, "t", where), where + " t");
     if (!(std::abs(v.camera.K.determinant()) > 0.0))
       throw InvalidInput(fmt::format("{}: the intrinsic matrix K is singular", where));
     const auto& kp = field(jc, "keypoints", where);
     if (!kp.is_object()) throw InvalidInput(fmt::format("{}: \"keypoints\" must be an object of name: [u, v]", where));
-    for (const auto& [name, uv] : kp.items()) v.keypoints[name] = vec<2>(uv, where + " keypoint " + name);
+    for (const auto& [name, uv] : kp.items()) v.keypoints[name] = json_values::vec2(uv, where + " keypoint " + name);
     views.push_back(std::move(v));
   }
   return views;
