@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "knitforge/util/errors.h"
@@ -25,7 +26,7 @@ std::vector<Vec3> plane_with_outliers(const Vec3& n, const Vec3& p, int n_plane,
   return pts;
 }
 
-double angle_deg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI; }
+double angle_deg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi; }
 
 }  // namespace
 
