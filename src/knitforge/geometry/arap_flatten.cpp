@@ -34,6 +34,13 @@ double signed_uv_area(const TriMesh& mesh, const std::vector<Vec2>& uv, int f) {
   return 0.5 * (a.x() * b.y() - a.y() * b.x());
 }
 
+bool has_flipped_face(const TriMesh& mesh, const std::vector<Vec2>& uv) {
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    if (!(signed_uv_area(mesh, uv, f) > 0.0)) return true;
+  }
+  return false;
+}
+
 namespace {
 
 // Union-find over vertices for the equal-coordinate groups.
@@ -288,12 +295,6 @@ ArapFlattenResult arap_flatten(const TriMesh& mesh, const ArapFlattenOptions& op
   out.initial_energy = energy;
   const double floor = 1e-14 * area_sq;
   bool has_constraints = !options.equal_x.empty() || !options.equal_y.empty();
-  const auto folded = [&] {
-    for (int f = 0; f < nf; ++f) {
-      if (!(signed_uv_area(mesh, uv, f) > 0.0)) return true;
-    }
-    return false;
-  };
   int folded_in_a_row = 0;
   for (int it = 0; it < options.max_iterations; ++it) {
     global_step();
@@ -301,7 +302,7 @@ ArapFlattenResult arap_flatten(const TriMesh& mesh, const ArapFlattenOptions& op
     ++out.iterations;
     if (options.on_iteration) options.on_iteration(out.iterations);
     if (options.stop_after_folded_iterations > 0) {
-      folded_in_a_row = folded() ? folded_in_a_row + 1 : 0;
+      folded_in_a_row = has_flipped_face(mesh, uv) ? folded_in_a_row + 1 : 0;
       if (folded_in_a_row >= options.stop_after_folded_iterations) {
         energy = next;
         out.stopped_folded = true;

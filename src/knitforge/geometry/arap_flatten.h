@@ -90,4 +90,8 @@ ArapFlattenResult arap_flatten(const TriMesh& mesh, const ArapFlattenOptions& op
 /// orientation as the start / counter-clockwise).
 double signed_uv_area(const TriMesh& mesh, const std::vector<Vec2>& uv, int f);
 
+/// True when some face's 2D triangle is flipped or degenerate
+/// (signed_uv_area() <= 0 or not a number): uv is not injective.
+bool has_flipped_face(const TriMesh& mesh, const std::vector<Vec2>& uv);
+
 }  // namespace knitforge

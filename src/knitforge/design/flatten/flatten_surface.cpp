@@ -78,31 +78,24 @@ Flattening flatten_surface(const TriMesh& mesh, const std::vector<DartSpec>& dar
 
 namespace {
 
-bool injective(const TriMesh& mesh, const std::vector<Vec2>& uv) {
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    if (!(signed_uv_area(mesh, uv, f) > 0.0)) return false;
-  }
-  return true;
-}
-
 // A start without flipped faces for slim_flatten(): the unconstrained ARAP
 // result when it has none, else Tutte's embedding of the surface with the
 // darts closed (bijective for a disk; the two copies of a cut vertex start
 // at one point), else Tutte's embedding of the cut mesh.
 std::vector<Vec2> injective_start(const CutDarts& cut, const std::vector<Vec2>& unconstrained,
                                   const std::vector<Vec2>& tutte) {
-  if (injective(cut.mesh, unconstrained)) return unconstrained;
+  if (!has_flipped_face(cut.mesh, unconstrained)) return unconstrained;
   if (!cut.vertex_class.empty()) {
     try {
       const std::vector<Vec2> closed = tutte_embedding(closed_darts_mesh(cut)).uv;
       std::vector<Vec2> uv(cut.mesh.vertices.size());
       for (size_t v = 0; v < uv.size(); ++v) uv[v] = closed[static_cast<size_t>(cut.vertex_class[v])];
-      if (injective(cut.mesh, uv)) return align_pattern_to_reference(cut.mesh, uv);
+      if (!has_flipped_face(cut.mesh, uv)) return align_pattern_to_reference(cut.mesh, uv);
     } catch (const TopologyError&) {
       // darts that touch each other: the closed surface is not a manifold disk
     }
   }
-  if (injective(cut.mesh, tutte)) return align_pattern_to_reference(cut.mesh, tutte);
+  if (!has_flipped_face(cut.mesh, tutte)) return align_pattern_to_reference(cut.mesh, tutte);
   throw SolverError(
       "flattening: no start without folded triangles was found (the surface may have degenerate, "
       "zero-area faces; remove them)");
@@ -130,7 +123,6 @@ Flattening flatten_cut(CutDarts cut, const FlattenOptions& options) {
   // solver's (below), so ARAP need not run to convergence once it stays folded.
   if (out.darts.empty()) arap.stop_after_folded_iterations = options.abandon_folded_arap_after;
   ArapFlattenResult first = arap_flatten(out.mesh, arap);
-  arap.stop_after_folded_iterations = 0;
   out.iterations = first.iterations;
   std::vector<Vec2> uv = align_pattern_to_reference(out.mesh, first.uv);
   const std::vector<Vec2> unconstrained = uv;
