@@ -50,6 +50,31 @@ class SmplFile {
   NpzReader npz_;
 };
 
+// Row sums of a dense rows x cols array (C order).
+std::vector<double> row_sums(const NpyArray& a, int64_t rows, int64_t cols) {
+  std::vector<double> sums(static_cast<size_t>(rows), 0.0);
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t c = 0; c < cols; ++c) sums[static_cast<size_t>(r)] += a.value(r * cols + c);
+  return sums;
+}
+
+// The non-zeros of a dense rows x cols array, row r divided by divisor[r]
+// (none when `divisor` is empty).
+RowSparse sparse_rows(const NpyArray& a, int64_t rows, int64_t cols, const std::vector<double>& divisor) {
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int64_t r = 0; r < rows; ++r) {
+    for (int64_t c = 0; c < cols; ++c) {
+      const double x = a.value(r * cols + c);
+      if (x != 0.0)
+        trip.emplace_back(static_cast<int>(r), static_cast<int>(c),
+                          divisor.empty() ? x : x / divisor[static_cast<size_t>(r)]);
+    }
+  }
+  RowSparse m(static_cast<int>(rows), static_cast<int>(cols));
+  m.setFromTriplets(trip.begin(), trip.end());
+  return m;
+}
+
 }  // namespace
 
 const std::vector<std::string>& smpl_joint_names() {
@@ -171,46 +196,27 @@ BodyModel load_smpl_model(const std::string& path, const SmplLoadOptions& option
   const NpyArray jr = file.array("J_regressor", 2, "J x V, dense");
   file.expect_dim(jr, "J_regressor", 0, J, "the joints of kintree_table");
   file.expect_dim(jr, "J_regressor", 1, V, "the vertices of v_template");
-  {
-    std::vector<Eigen::Triplet<double>> trip;
-    for (int64_t j = 0; j < J; ++j) {
-      double sum = 0.0;
-      for (int64_t i = 0; i < V; ++i) {
-        const double w = jr.value(j * V + i);
-        sum += w;
-        if (w != 0.0) trip.emplace_back(static_cast<int>(j), static_cast<int>(i), w);
-      }
-      if (std::abs(sum - 1.0) > 1e-3)
-        file.fail("J_regressor", fmt::format("row {} ('{}') sums to {}, not 1", j,
-                                             m.joint_names[static_cast<size_t>(j)], sum));
-    }
-    m.joint_regressor.resize(static_cast<int>(J), static_cast<int>(V));
-    m.joint_regressor.setFromTriplets(trip.begin(), trip.end());
+  const std::vector<double> jr_sums = row_sums(jr, J, V);
+  for (int64_t j = 0; j < J; ++j) {
+    if (std::abs(jr_sums[static_cast<size_t>(j)] - 1.0) > 1e-3)
+      file.fail("J_regressor", fmt::format("row {} ('{}') sums to {}, not 1", j, m.joint_names[static_cast<size_t>(j)],
+                                           jr_sums[static_cast<size_t>(j)]));
   }
+  m.joint_regressor = sparse_rows(jr, J, V, {});
 
   const NpyArray w = file.array("weights", 2, "V x J skinning weights");
   file.expect_dim(w, "weights", 0, V, "the vertices of v_template");
   file.expect_dim(w, "weights", 1, J, "the joints of kintree_table");
-  {
-    std::vector<Eigen::Triplet<double>> trip;
-    for (int64_t i = 0; i < V; ++i) {
-      double sum = 0.0;
-      for (int64_t j = 0; j < J; ++j) {
-        const double x = w.value(i * J + j);
-        if (x < 0.0)
-          file.fail("weights", fmt::format("vertex {} has weight {} for joint {} (must be >= 0)", i, x, j));
-        sum += x;
-      }
-      if (!(std::abs(sum - 1.0) <= options.weight_sum_tolerance))
-        file.fail("weights", fmt::format("the weights of vertex {} sum to {}, not 1", i, sum));
-      for (int64_t j = 0; j < J; ++j) {
-        const double x = w.value(i * J + j);
-        if (x != 0.0) trip.emplace_back(static_cast<int>(i), static_cast<int>(j), x / sum);
-      }
-    }
-    m.skinning_weights.resize(static_cast<int>(V), static_cast<int>(J));
-    m.skinning_weights.setFromTriplets(trip.begin(), trip.end());
+  for (int64_t k = 0; k < V * J; ++k) {
+    if (w.value(k) < 0.0)
+      file.fail("weights", fmt::format("vertex {} has weight {} for joint {} (must be >= 0)", k / J, w.value(k), k % J));
   }
+  const std::vector<double> w_sums = row_sums(w, V, J);
+  for (int64_t i = 0; i < V; ++i) {
+    if (!(std::abs(w_sums[static_cast<size_t>(i)] - 1.0) <= options.weight_sum_tolerance))
+      file.fail("weights", fmt::format("the weights of vertex {} sum to {}, not 1", i, w_sums[static_cast<size_t>(i)]));
+  }
+  m.skinning_weights = sparse_rows(w, V, J, w_sums);  // rows rescaled to sum to 1 exactly
 
   validate_body_model(m);
   return m;
