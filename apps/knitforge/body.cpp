@@ -1,6 +1,7 @@
 // knitforge body: bodies from measurements (seed ch. 5).
 //   knitforge body make --height 176 --chest 96 ... [--pose a-pose|FILE.json] -o body.obj
-//   knitforge body fit SCAN [--keypoints K.json] -o fitted/
+//   knitforge body make --model SMPL.npz [--shape b0,b1,...] [--pose ...] -o body.obj
+//   knitforge body fit SCAN [--keypoints K.json] [--model SMPL.npz] -o fitted/
 //   knitforge body region fitted/|BODY.obj --part torso-front -o panel.obj
 //   knitforge body transfer GARMENT.obj --from A --to B -o out.obj
 //   knitforge body render-depth / calibrate / fuse: body_depth.cpp
@@ -25,10 +26,12 @@
 #include "knitforge/body/keypoint_views.h"
 #include "knitforge/body/make_body.h"
 #include "knitforge/body/pose_from_keypoints.h"
+#include "knitforge/body/smpl_model_npz.h"
 #include "knitforge/body/transfer_garment.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/util/atomic_file.h"
+#include "knitforge/util/number_list.h"
 
 namespace knitforge::cli {
 
@@ -40,6 +43,8 @@ struct MakeOptions {
   std::string pose = "t-pose";
   std::string output;
   std::string params;
+  std::string model;  // an SMPL-format .npz instead of the built-in model
+  std::string shape;  // its shape parameters, "b0,b1,..."
   double edge = 15.0;
   double noise = 0.0;
   unsigned seed = 1;
@@ -62,8 +67,70 @@ BodyParams load_pose(const BodyModel& model, const std::string& pose) {
   return pose_preset(model, pose);  // throws, listing the names
 }
 
+// The mesh of body make, with --noise as a stand-in for a scan; creates the
+// directories of the output files.
+void write_made_body(const MakeOptions& o, const TriMesh& mesh) {
+  for (const std::string& file : {o.output, o.params}) {
+    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+    if (!file.empty() && !parent.empty()) std::filesystem::create_directories(parent);
+  }
+  if (o.noise > 0.0) {
+    // Uniform noise per coordinate (deterministic).
+    TriMesh noisy = mesh;
+    std::mt19937 rng(o.seed);
+    std::uniform_real_distribution<double> u(-o.noise, o.noise);
+    for (Vec3& v : noisy.vertices) v += Vec3(u(rng), u(rng), u(rng));
+    write_mesh(o.output, noisy);
+  } else {
+    write_mesh(o.output, mesh);
+  }
+}
+
+nlohmann::json joints_json(const BodyModel& model, const PosedBody& posed) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int q = 0; q < model.num_joints(); ++q) {
+    const Vec3& p = posed.joints[static_cast<size_t>(q)];
+    j[model.joint_names[static_cast<size_t>(q)]] = {p.x(), p.y(), p.z()};
+  }
+  return j;
+}
+
+// body make --model: a body of a licensed SMPL-format model from its shape
+// parameters (the model has no landmarks, so no measurements).
+int run_make_from_file(const MakeOptions& o) {
+  for (int k = 0; k < kNumMeasurements; ++k) {
+    if (o.values[static_cast<size_t>(k)])
+      throw InvalidInput(fmt::format("body make: --{} cannot be used with --model: a model file has no measurements "
+                                     "(no landmarks); give its shape parameters with --shape b0,b1,...",
+                                     measurement_info(static_cast<Measurement>(k)).option));
+  }
+  if (o.edge != GeneratedBodyOptions{}.edge_length)
+    throw InvalidInput("body make: --edge is the built-in model's mesh size; a model file (--model) has its own mesh");
+  const BodyModel model = load_smpl_model(o.model);
+  BodyParams params = load_pose(model, o.pose);
+  const std::vector<double> betas = o.shape.empty() ? std::vector<double>{} : parse_number_list(o.shape, "body make --shape");
+  if (static_cast<int>(betas.size()) > model.num_shapes())
+    throw InvalidInput(fmt::format("body make --shape: {} values, the model {} has {} shape parameters", betas.size(),
+                                   o.model, model.num_shapes()));
+  for (size_t k = 0; k < betas.size(); ++k) params.shape(static_cast<Eigen::Index>(k)) = betas[k];
+  const PosedBody posed = pose_body(model, params);
+  write_made_body(o, posed_mesh(model, posed));
+  nlohmann::json report = body_params_to_json(model, params);
+  report["joints_mm"] = joints_json(model, posed);
+  if (!o.params.empty()) write_report_json(o.params, report, false);
+  if (o.json) std::fputs((body_params_to_json(model, params).dump(2) + "\n").c_str(), stdout);
+  note(fmt::format("body: {} of {} vertices, {} joints, {} of {} shape parameters given, pose {}{} -> {}", o.model,
+                   model.num_vertices(), model.num_joints(), betas.size(), model.num_shapes(), o.pose,
+                   o.noise > 0.0 ? fmt::format(", noise ±{:g} mm", o.noise) : "", o.output));
+  return 0;
+}
+
 int run_make(const MakeOptions& o) {
   if (o.output.empty()) throw InvalidInput("body make: give the output mesh with -o FILE (.obj, .ply, .off, .stl)");
+  if (!o.model.empty()) return run_make_from_file(o);
+  if (!o.shape.empty())
+    throw InvalidInput("body make: --shape gives the shape parameters of a model file (--model FILE.npz); the "
+                       "built-in model takes measurements (--height, --chest, ...)");
   const double scale = unit_scale(o.units);
   MeasurementTargets targets;
   for (int k = 0; k < kNumMeasurements; ++k) {
@@ -80,30 +147,13 @@ int run_make(const MakeOptions& o) {
   }
   const BodyParams pose = load_pose(*model, o.pose);
   const MadeBody body = make_body(*model, targets, pose);
-  for (const std::string& file : {o.output, o.params}) {
-    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-    if (!file.empty() && !parent.empty()) std::filesystem::create_directories(parent);
-  }
-  if (o.noise > 0.0) {
-    // A stand-in for a scan: uniform noise per coordinate (deterministic).
-    TriMesh noisy = body.mesh;
-    std::mt19937 rng(o.seed);
-    std::uniform_real_distribution<double> u(-o.noise, o.noise);
-    for (Vec3& v : noisy.vertices) v += Vec3(u(rng), u(rng), u(rng));
-    write_mesh(o.output, noisy);
-  } else {
-    write_mesh(o.output, body.mesh);
-  }
+  write_made_body(o, body.mesh);
   nlohmann::json report = body_params_to_json(*model, body.params, &body.fit.achieved);
   report["targets_mm"] = measurements_to_json(body.fit.targets);
   report["max_measurement_error_mm"] = body.fit.max_error_mm;
   report["newton_iterations"] = body.fit.iterations;
   report["vertex_parts"] = vertex_part_names(*model);
-  report["joints_mm"] = nlohmann::json::object();
-  for (int j = 0; j < model->num_joints(); ++j) {
-    const Vec3& p = body.posed.joints[static_cast<size_t>(j)];
-    report["joints_mm"][model->joint_names[static_cast<size_t>(j)]] = {p.x(), p.y(), p.z()};
-  }
+  report["joints_mm"] = joints_json(*model, body.posed);
   if (!o.params.empty()) write_report_json(o.params, report, false);
   if (o.json) std::fputs((body_params_to_json(*model, body.params, &body.fit.achieved).dump(2) + "\n").c_str(), stdout);
   const auto& m = body.fit.achieved;
@@ -123,6 +173,7 @@ struct FitOptions {
   std::string pose = "a-pose";
   std::string objective = "best";
   std::string keypoints;
+  std::string model;
   int iterations = BodyFitOptions{}.max_iterations;
   double max_distance = BodyFitOptions{}.max_distance_mm;
   bool json = false;
@@ -131,8 +182,17 @@ struct FitOptions {
 int run_fit(const FitOptions& o) {
   if (o.outdir.empty()) throw InvalidInput("body fit: give the output directory with -o DIR");
   const TriMesh scan = load_surface(o.input, o.units);
-  const BodyModel& model = generated_body();
+  // A model file: its first 10 shape directions (SMPL's usual betas; the
+  // cost of a fit grows with their number).
+  std::unique_ptr<BodyModel> own;
+  if (!o.model.empty()) own = std::make_unique<BodyModel>(load_smpl_model(o.model, {.max_shapes = 10}));
+  const BodyModel& model = own ? *own : generated_body();
+  const bool labelled = !model.vertex_parts.empty();
   BodyFitOptions fo;
+  // SMPL's betas are unitless (about one standard deviation per unit): a
+  // prior of 1 mm² per beta² keeps the shapes the scan does not constrain
+  // near the mean; ours are mm of a measurement.
+  if (own) fo.shape_prior = 1.0;
   const bool cloud = o.objective == "cloud";
   if (!cloud && scan.faces.empty())
     throw InvalidInput(fmt::format("{}: has no faces; for a point cloud use --objective cloud", o.input));
@@ -176,12 +236,15 @@ int run_fit(const FitOptions& o) {
   const BodyFitResult fit =
       o.objective == "best" ? fit_body_multistart(model, scan, init, fo) : fit_body(model, scan, init, fo);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const BodyMeasurements measured = measure_body(model, shape_body(model, fit.params.shape));
+  // A model file has no landmarks, hence no measurements.
+  const std::optional<BodyMeasurements> measured =
+      model.landmarks.empty() ? std::nullopt
+                              : std::optional<BodyMeasurements>(measure_body(model, shape_body(model, fit.params.shape)));
   const TriMesh body = posed_mesh(model, fit.posed);
   std::filesystem::create_directories(o.outdir);
   const std::filesystem::path dir(o.outdir);
   write_mesh((dir / "fitted.obj").string(), body);
-  nlohmann::json report = body_params_to_json(model, fit.params, &measured);
+  nlohmann::json report = body_params_to_json(model, fit.params, measured ? &*measured : nullptr);
   report["fit"] = {{"scan", o.input},
                    {"objective", cloud ? "eq. 5.4 cloud-to-template"
                                        : o.objective == "both" ? "eq. 5.1 + eq. 5.4 (both directions)"
@@ -201,9 +264,12 @@ int run_fit(const FitOptions& o) {
   if (!scan.faces.empty()) {
     const std::vector<double> err = vertex_distances_mm(body, scan);
     write_file_atomically((dir / "vertex_error.csv").string(), [&](std::ostream& os) {
-      os << "vertex,error_mm,part\n";
-      for (size_t i = 0; i < err.size(); ++i)
-        os << i << ',' << fmt::format("{:.3f}", err[i]) << ',' << body_part_name(model.vertex_parts[i]) << '\n';
+      os << (labelled ? "vertex,error_mm,part\n" : "vertex,error_mm\n");
+      for (size_t i = 0; i < err.size(); ++i) {
+        os << i << ',' << fmt::format("{:.3f}", err[i]);
+        if (labelled) os << ',' << body_part_name(model.vertex_parts[i]);
+        os << '\n';
+      }
     });
   } else {
     const std::vector<double> err = distances_to_surface(body, scan.vertices);
@@ -212,17 +278,24 @@ int run_fit(const FitOptions& o) {
       for (size_t i = 0; i < err.size(); ++i) os << i << ',' << fmt::format("{:.3f}", err[i]) << '\n';
     });
   }
-  const std::vector<BodyPart> parts = scan_vertex_parts(model, fit.posed, scan);
-  write_file_atomically((dir / "scan_parts.csv").string(), [&](std::ostream& os) {
-    os << "scan_vertex,part\n";
-    for (size_t i = 0; i < parts.size(); ++i) os << i << ',' << body_part_name(parts[i]) << '\n';
-  });
-  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations; height {:.1f} cm, chest {:.1f}, waist "
-                   "{:.1f}, hip {:.1f} cm; {:.1f} s -> {}/fitted.obj, params.json, vertex_error.csv, scan_parts.csv",
-                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, measured[0] / 10.0,
-                   measured[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
-                   measured[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
-                   measured[static_cast<size_t>(Measurement::HipGirth)] / 10.0, seconds, o.outdir));
+  // Garment regions on the scan need the model's part labels (a model file has none).
+  if (labelled) {
+    const std::vector<BodyPart> parts = scan_vertex_parts(model, fit.posed, scan);
+    write_file_atomically((dir / "scan_parts.csv").string(), [&](std::ostream& os) {
+      os << "scan_vertex,part\n";
+      for (size_t i = 0; i < parts.size(); ++i) os << i << ',' << body_part_name(parts[i]) << '\n';
+    });
+  }
+  const std::string sizes =
+      measured ? fmt::format("height {:.1f} cm, chest {:.1f}, waist {:.1f}, hip {:.1f} cm", (*measured)[0] / 10.0,
+                             (*measured)[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
+                             (*measured)[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
+                             (*measured)[static_cast<size_t>(Measurement::HipGirth)] / 10.0)
+               : fmt::format("model {} (no measurements, no garment regions)", model.name);
+  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations; {}; {:.1f} s -> {}/fitted.obj, "
+                   "params.json, vertex_error.csv{}",
+                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, sizes, seconds, o.outdir,
+                   labelled ? ", scan_parts.csv" : ""));
   return 0;
 }
 
@@ -263,6 +336,10 @@ int run_region(const RegionOptions& o) {
     } catch (const nlohmann::json::parse_error& e) {
       throw InvalidInput(fmt::format("{}: not valid JSON ({})", params_path, e.what()));
     }
+    if (params.contains("model") && params["model"].is_string() && params["model"].get<std::string>() != model.name)
+      throw InvalidInput(fmt::format("{}: the fit used the model '{}', which has no garment regions (part labels); "
+                                     "body region needs a fit with the built-in model (body fit without --model)",
+                                     params_path, params["model"].get<std::string>()));
     std::string scan_path = o.scan;
     if (scan_path.empty()) {
       if (!params.contains("fit") || !params["fit"].contains("scan") || !params["fit"]["scan"].is_string())
@@ -290,8 +367,8 @@ int run_region(const RegionOptions& o) {
     surface = load_surface(o.input, "mm");
     if (surface.num_vertices() != model.num_vertices() || surface.faces != model.faces)
       throw InvalidInput(fmt::format("{}: {} vertices, {} faces: not a body of the built-in model at edge {} mm ({} "
-                                     "vertices; as written by body make/fit); for a scan give the directory of its "
-                                     "fit",
+                                     "vertices; as written by body make/fit; bodies of a model file have no garment "
+                                     "regions); for a scan give the directory of its fit",
                                      o.input, surface.num_vertices(), surface.num_faces(), o.model_edge,
                                      model.num_vertices()));
     field = body_part_field(model, part);
@@ -375,6 +452,11 @@ void add_body_command(CLI::App& app, Action& action) {
   make->add_option("-o,--output", o->output, "Output mesh (.obj, .ply, .off, .stl), millimetres");
   make->add_option("--params", o->params,
                    "Also write the parameters, the measurements, the joints and each vertex's part (JSON)");
+  make->add_option("--model", o->model,
+                   "A licensed SMPL-format model file (.npz: docs/bodies.md) instead of the built-in model; its "
+                   "shape is given by --shape, not by measurements");
+  make->add_option("--shape", o->shape,
+                   "With --model: the shape parameters (betas) b0,b1,... (unitless; those not given are 0)");
   make->add_option("--edge", o->edge, "Edge length of the model's mesh (mm, 8-60; 15 is built once and cached)")
       ->check(CLI::Range(8.0, 60.0));
   make->add_option("--noise", o->noise,
@@ -404,6 +486,9 @@ void add_body_command(CLI::App& app, Action& action) {
   fit->add_option("--keypoints", f->keypoints,
                   "Initial pose and placement from 3D keypoints triangulated from calibrated views (seed 5.A; the "
                   "JSON format: docs/formats.md) instead of --pose on the scan's bounding box");
+  fit->add_option("--model", f->model,
+                  "Fit a licensed SMPL-format model file (.npz: docs/bodies.md; its first 10 shape parameters) "
+                  "instead of the built-in model: no measurements, no scan_parts.csv (it has no garment regions)");
   fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
   fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")
       ->check(CLI::PositiveNumber);
