@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <random>
+#include <string>
+
+#include <unistd.h>
 
 #include "knitforge/io/png_image.h"
 #include "knitforge/util/errors.h"
@@ -14,7 +17,8 @@ namespace {
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() /
-          (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + name))
+          (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+           std::to_string(::getpid()) + "_" + name))
       .string();
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -29,8 +30,11 @@ inline std::string slurp(const fs::path& p) {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
+    // The process id keeps two runs of one test apart (two checkouts tested
+    // at once on one machine shared /tmp/knitforge_e2e_<test> and failed).
     dir_ = fs::temp_directory_path() /
-           ("knitforge_e2e_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("knitforge_e2e_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "knitforge/util/errors.h"
 
@@ -14,7 +15,7 @@ namespace knitforge {
 namespace {
 
 std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("knitforge_vertex_field_" + name)).string();
+  return (std::filesystem::temp_directory_path() / ("knitforge_vertex_field_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
 TEST(VertexField, WrittenValuesReadBackExactly) {

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/stitch_mesh_ply.h"
@@ -31,7 +33,8 @@ class ProgramReportTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("knitforge_program_report_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("knitforge_program_report_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+            "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -6,6 +6,9 @@
 #include <fstream>
 #include <ostream>
 #include <sstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "knitforge/util/errors.h"
 
@@ -20,7 +23,7 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 fs::path fresh_dir(const char* name) {
-  const fs::path d = fs::temp_directory_path() / name;
+  const fs::path d = fs::temp_directory_path() / (std::string(name) + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
