@@ -7,6 +7,7 @@
 //   knitforge body render-depth / calibrate / fuse: body_depth.cpp
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -175,6 +176,9 @@ struct FitOptions {
   std::string keypoints;
   std::string model;
   int iterations = BodyFitOptions{}.max_iterations;
+  std::string optimizer = "gauss-newton";
+  int evaluations = BodyFitOptions{}.max_evaluations;
+  std::uint64_t seed = BodyFitOptions{}.seed;
   double max_distance = BodyFitOptions{}.max_distance_mm;
   bool json = false;
 };
@@ -199,6 +203,10 @@ int run_fit(const FitOptions& o) {
   fo.direction = cloud ? BodyFitDirection::ScanToTemplate
                        : (o.objective == "both" ? BodyFitDirection::Both : BodyFitDirection::TemplateToScan);
   fo.max_iterations = o.iterations;
+  const bool evolution = o.optimizer == "evolution";
+  fo.optimizer = evolution ? BodyFitOptimizer::EvolutionStrategy : BodyFitOptimizer::GaussNewton;
+  fo.max_evaluations = o.evaluations;
+  fo.seed = o.seed;
   fo.max_distance_mm = o.max_distance;
   const auto start = std::chrono::steady_clock::now();
   BodyParams init;
@@ -252,7 +260,9 @@ int run_fit(const FitOptions& o) {
                                                                : "eq. 5.1 template-to-scan"},
                    {"rms_mm", fit.rms_mm},
                    {"initial_rms_mm", fit.initial_rms_mm},
+                   {"optimizer", evolution ? "(1+1) evolution strategy" : "Gauss-Newton (Levenberg-Marquardt)"},
                    {"iterations", fit.iterations},
+                   {"evaluations", fit.evaluations},
                    {"converged", fit.converged},
                    {"seconds", seconds},
                    {"scan_points", scan.num_vertices()},
@@ -292,9 +302,11 @@ int run_fit(const FitOptions& o) {
                              (*measured)[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
                              (*measured)[static_cast<size_t>(Measurement::HipGirth)] / 10.0)
                : fmt::format("model {} (no measurements, no garment regions)", model.name);
-  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {} iterations; {}; {:.1f} s -> {}/fitted.obj, "
+  const std::string work = evolution ? fmt::format("{} evaluations of the evolution strategy", fit.evaluations)
+                                     : fmt::format("{} iterations", fit.iterations);
+  note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {}; {}; {:.1f} s -> {}/fitted.obj, "
                    "params.json, vertex_error.csv{}",
-                   fit.rms_mm, fit.initial_rms_mm, fit.iterations, sizes, seconds, o.outdir,
+                   fit.rms_mm, fit.initial_rms_mm, work, sizes, seconds, o.outdir,
                    labelled ? ", scan_parts.csv" : ""));
   return 0;
 }
@@ -490,6 +502,15 @@ void add_body_command(CLI::App& app, Action& action) {
                   "Fit a licensed SMPL-format model file (.npz: docs/bodies.md; its first 10 shape parameters) "
                   "instead of the built-in model: no measurements, no scan_parts.csv (it has no garment regions)");
   fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
+  fit->add_option("--optimizer", f->optimizer,
+                  "gauss-newton (default) or evolution: the seed's gradient-free (1+1) evolution strategy on the "
+                  "same objective (thousands of evaluations; slower, kept for comparison)")
+      ->check(CLI::IsMember({"gauss-newton", "evolution"}));
+  fit->add_option("--evaluations", f->evaluations,
+                  "Most cost evaluations of the evolution strategy per fit (default 4000; --objective best runs "
+                  "three fits)")
+      ->check(CLI::Range(1, 100000));
+  fit->add_option("--seed", f->seed, "Seed of the evolution strategy's random steps (default 1)");
   fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")
       ->check(CLI::PositiveNumber);
   fit->add_flag("--json", f->json, "Print params.json");

@@ -10,6 +10,7 @@
 
 #include "knitforge/body/axis_angle.h"
 #include "knitforge/body/body_jacobian.h"
+#include "knitforge/body/one_plus_one_es.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/geometry/cotan_laplacian.h"
 #include "knitforge/geometry/mesh_measures.h"
@@ -191,10 +192,57 @@ class Fitter {
   }
 
   BodyFitResult run() const {
+    return o_.optimizer == BodyFitOptimizer::EvolutionStrategy ? run_evolution_strategy() : run_gauss_newton();
+  }
+
+ private:
+  double rms(const Linearised& L) const { return L.data_w > 0.0 ? std::sqrt(L.data_sq / L.data_w) : 0.0; }
+
+  // The unit steps of the evolution strategy (fit_body.h, BodyFitOptimizer).
+  Eigen::VectorXd evolution_scales() const {
+    Eigen::VectorXd s = Eigen::VectorXd::Zero(layout_.size());
+    s.segment<3>(BodyParamLayout::translation()).setConstant(10.0);
+    for (int j = 0; j < model_.num_joints(); ++j) s.segment<3>(layout_.rotation(j)).setConstant(0.05);
+    if (o_.fit_shape) {
+      for (int k = 0; k < model_.num_shapes(); ++k) {
+        const double vertex_rms =
+            model_.shape_basis.col(k).norm() / std::sqrt(static_cast<double>(std::max(1, model_.num_vertices())));
+        if (vertex_rms > 0.0) s[layout_.shape(k)] = 10.0 / vertex_rms;
+      }
+    }
+    return s;
+  }
+
+  BodyFitResult run_evolution_strategy() const {
+    BodyFitResult out;
+    out.initial_rms_mm = rms(evaluate(initial_, false));
+    OnePlusOneEsOptions es;
+    es.max_evaluations = o_.max_evaluations;
+    es.seed = o_.seed;
+    // The body's objective is ill-conditioned (a root rotation moves the
+    // hands a metre away): the step shrinks to the narrow directions while
+    // the cost still falls along the others, so only the stall test and the
+    // budget end the search, not the step size.
+    es.min_step = 1e-7;
+    const OnePlusOneEsResult r = minimise_one_plus_one_es(
+        [&](const Eigen::VectorXd& x) { return evaluate(apply_increment(model_, initial_, x), false).cost; },
+        Eigen::VectorXd::Zero(layout_.size()), evolution_scales(), es);
+    out.params = apply_increment(model_, initial_, r.x);
+    const Linearised last = evaluate(out.params, false);
+    out.posed = last.posed;
+    out.rms_mm = rms(last);
+    out.rms_history_mm = {out.rms_mm};
+    out.iterations = r.evaluations - 1;
+    out.evaluations = r.evaluations + 2;
+    out.converged = r.converged;
+    return out;
+  }
+
+  BodyFitResult run_gauss_newton() const {
     BodyFitResult out;
     BodyParams p = initial_;
     Linearised cur = evaluate(p, true);
-    auto rms = [](const Linearised& L) { return L.data_w > 0.0 ? std::sqrt(L.data_sq / L.data_w) : 0.0; };
+    out.evaluations = 1;
     out.initial_rms_mm = rms(cur);
     double lambda = 1e-3;
     const int N = layout_.size();
@@ -214,6 +262,7 @@ class Fitter {
         }
         trial = apply_increment(model_, p, delta);
         next = evaluate(trial, false);
+        ++out.evaluations;
         if (next.cost < cur.cost) {
           accepted = true;
           lambda = std::max(lambda / 3.0, 1e-9);
@@ -229,6 +278,7 @@ class Fitter {
       const double rel = (cur.cost - next.cost) / std::max(cur.cost, 1e-300);
       p = trial;
       cur = evaluate(p, true);
+      ++out.evaluations;
       out.rms_history_mm.push_back(rms(cur));
       if (rel < o_.relative_tolerance) {
         out.converged = true;
@@ -241,7 +291,6 @@ class Fitter {
     return out;
   }
 
- private:
   const BodyModel& model_;
   const TriMesh& scan_;
   const BodyParams& initial_;
@@ -263,6 +312,8 @@ BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyPa
   if (!(options.pose_prior >= 0.0) || !(options.shape_prior >= 0.0))
     throw InvalidInput("fit_body: the priors must be non-negative");
   if (options.max_cloud_points < 1) throw InvalidInput("fit_body: max_cloud_points must be at least 1");
+  if (options.max_evaluations < 1)
+    throw InvalidInput(fmt::format("fit_body: max_evaluations {} must be at least 1", options.max_evaluations));
   if (scan.vertices.empty()) throw InvalidInput("fit_body: the scan has no points");
   for (size_t i = 0; i < scan.vertices.size(); ++i)
     if (!scan.vertices[i].allFinite()) throw InvalidInput(fmt::format("fit_body: scan point {} is not finite", i));

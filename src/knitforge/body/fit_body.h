@@ -29,6 +29,7 @@
 /// Deterministic. Cost per iteration: one closest-point query per residual
 /// (O(log F)) and a dense 3V x N Jacobian (V = model vertices).
 
+#include <cstdint>
 #include <vector>
 
 #include "knitforge/body/body_model.h"
@@ -44,10 +45,28 @@ namespace knitforge {
 /// minimum when the initial pose is far.
 enum class BodyFitDirection { TemplateToScan, ScanToTemplate, Both };
 
+/// How fit_body() minimises the objective.
+///  - GaussNewton: Levenberg-Marquardt on the point-to-plane linearisation
+///    (the file comment); the default.
+///  - EvolutionStrategy: the seed's gradient-free (1+1) evolution strategy
+///    (one_plus_one_es.h) on the same cost, the true squared distances plus
+///    the priors; parameters are increments of the initial ones (the
+///    apply_increment() layout) with unit steps of 10 mm (translation),
+///    0.05 rad (each joint rotation) and, per shape parameter, the change
+///    that moves the template's vertices by 10 mm RMS. Kept for comparison
+///    (docs/bodies.md measures both on the same fits): it needs thousands of
+///    cost evaluations where Gauss-Newton needs tens of linear solves.
+enum class BodyFitOptimizer { GaussNewton, EvolutionStrategy };
+
 /// Options of fit_body().
 struct BodyFitOptions {
   BodyFitDirection direction = BodyFitDirection::TemplateToScan;
+  BodyFitOptimizer optimizer = BodyFitOptimizer::GaussNewton;
   int max_iterations = 40;        ///< Gauss-Newton iterations (>= 1)
+  /// EvolutionStrategy: cost evaluations at most (>= 1), and the seed of
+  /// its random steps.
+  int max_evaluations = 4000;
+  std::uint64_t seed = 1;
   double max_distance_mm = 80.0;  ///< pairs farther apart are ignored (> 0)
   /// Stop when an iteration lowers the objective by less than this fraction.
   double relative_tolerance = 1e-5;
@@ -65,9 +84,12 @@ struct BodyFitResult {
   PosedBody posed;            ///< the fitted body
   double rms_mm = 0.0;        ///< sqrt of the weighted mean squared distance (trimmed pairs)
   double initial_rms_mm = 0.0;
-  int iterations = 0;
-  bool converged = false;     ///< the relative tolerance was reached
-  std::vector<double> rms_history_mm;  ///< after each accepted iteration
+  int iterations = 0;         ///< Gauss-Newton iterations, or ES generations
+  int evaluations = 0;        ///< cost evaluations (each poses the body and queries every pair)
+  bool converged = false;     ///< the relative tolerance was reached (ES: its step or stall test)
+  /// After each accepted Gauss-Newton iteration; for the evolution
+  /// strategy only the final rms.
+  std::vector<double> rms_history_mm;
   int chosen_run = 0;         ///< fit_body_multistart(): which run won (0, 1, 2)
   /// fit_body_multistart(): the symmetric rms (mm) of each run, in run order.
   std::vector<double> run_rms_mm;
