@@ -2,8 +2,10 @@
 //   knitforge body render-depth [MESH] -o DIR [--poses K] [--noise MM]      synthetic captures
 //   knitforge body calibrate --camera1 C1.json --camera2 C2.json --thickness MM IMAGES... -o calibration.json
 //   knitforge body fuse K1.png K2.png --camera1 C1.json --camera2 C2.json --calibration CAL.json -o body.ply
+//   knitforge body calibrate-study [--noise LIST] [--poses LIST] [--runs N]     the calibration error, as a table
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numbers>
@@ -17,6 +19,7 @@
 #include "knitforge/body/json_values.h"
 #include "knitforge/body/poisson_reconstruct.h"
 #include "knitforge/body/render_depth_image.h"
+#include "knitforge/body/study_depth_calibration.h"
 #include "knitforge/body/synthetic_depth_scenes.h"
 #include "knitforge/evaluate/scalar_stats.h"
 #include "knitforge/evaluate/surface_distance.h"
@@ -49,11 +52,6 @@ std::string parse_size3(const std::string& text, BoardSize& size) {
   return "";
 }
 
-void make_parent(const std::string& file) {
-  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-}
-
 // ---------------------------------------------------------------- render-depth
 
 struct RenderDepthOptions {
@@ -71,6 +69,7 @@ struct RenderDepthOptions {
 int run_render_depth(const RenderDepthOptions& o) {
   BoardSize board;
   if (const std::string e = parse_size3(o.board, board); !e.empty()) throw UsageError(e);
+  check_output_dir("--output", o.outdir, {o.mesh});
   const DepthRig rig = seed_depth_rig(o.distance);
   std::vector<std::pair<std::string, TriMesh>> scenes;
   nlohmann::json truth = depth_rig_to_json(rig);
@@ -99,7 +98,8 @@ int run_render_depth(const RenderDepthOptions& o) {
   }
   std::filesystem::create_directories(o.outdir);
   const std::filesystem::path dir(o.outdir);
-  for (const auto& [name, image] : images) write_depth_image((dir / name).string(), image, rig.camera1);
+  for (size_t i = 0; i < images.size(); ++i)
+    write_depth_image((dir / images[i].first).string(), images[i].second, i % 2 == 0 ? rig.camera1 : rig.camera2);
   write_report_json((dir / "camera1.json").string(), depth_camera_to_json(rig.camera1), false);
   write_report_json((dir / "camera2.json").string(), depth_camera_to_json(rig.camera2), false);
   truth["noise_mm"] = o.noise;
@@ -177,10 +177,14 @@ int run_calibrate(const CalibrateOptions& o) {
     throw UsageError("body calibrate: give the board's thickness with --thickness MM (the seed's c; 0 for a sheet)");
   check_output_file("--output", o.output, {".json"});
   const auto pairs = image_pairs(o.images);
-  if (pairs.size() < 3)
-    throw InvalidInput(fmt::format("body calibrate: {} board pose{}; eq. 5.2/5.3 need at least 3 poses, no two "
-                                   "parallel",
-                                   pairs.size(), pairs.size() == 1 ? "" : "s"));
+  if (pairs.size() < 3) {
+    std::string given;
+    for (const std::string& a : o.images) given += (given.empty() ? "" : ", ") + a;
+    throw InvalidInput(fmt::format("{}: {} board pose{} (image pairs); eq. 5.2/5.3 need at least 3 poses, no two "
+                                   "parallel: capture the board tilted differently {} more time{}",
+                                   given, pairs.size(), pairs.size() == 1 ? "" : "s", 3 - pairs.size(),
+                                   3 - pairs.size() == 1 ? "" : "s"));
+  }
   const DepthCamera cam1 = read_camera(o.camera1), cam2 = read_camera(o.camera2);
   std::vector<BoardCapture> captures;
   for (const auto& [a, b] : pairs)
@@ -269,7 +273,12 @@ const Mat3& upright_rotation() {
 }
 
 int run_fuse(const FuseOptions& o) {
-  check_output_file("--output", o.output, {".obj", ".ply", ".off", ".stl"}, {o.image1, o.image2});
+  // The report JSON beside the mesh must not replace an input either (a
+  // calibration named like the output).
+  const std::vector<std::string> inputs = {o.image1, o.image2, o.camera1, o.camera2, o.calibration, o.truth, o.rig};
+  check_output_file("--output", o.output, {".obj", ".ply", ".off", ".stl"}, inputs);
+  const std::string report_path = std::filesystem::path(o.output).replace_extension(".json").string();
+  check_output_file("--output's report", report_path, {".json"}, inputs);
   if (!o.truth.empty() && o.rig.empty())
     throw UsageError("body fuse: --truth needs --rig RIG.json (where the cameras stood relative to the true mesh)");
   const DepthCamera cam1 = read_camera(o.camera1), cam2 = read_camera(o.camera2);
@@ -317,14 +326,52 @@ int run_fuse(const FuseOptions& o) {
                           "true surface to it {:.2f} mm rms",
                           o.truth, points_to_truth.rms, to_truth.rms, to_truth.p90, to_truth.max, from_truth.rms);
   }
-  make_parent(o.output);
   write_mesh(o.output, rec.mesh);
-  const std::string report_path = std::filesystem::path(o.output).replace_extension(".json").string();
   write_report_json(report_path, report, o.json);
   note(fmt::format("body fuse: {} + {} points, {} after {:g} mm voxels; Poisson (spacing {:.1f} mm): {} vertices, {} "
                    "faces{} -> {}, {}",
                    c1.points.size(), c2.points.size(), fused.points.size(), o.voxel, rec.spacing_mm,
                    rec.mesh.num_vertices(), rec.mesh.num_faces(), against, o.output, report_path));
+  return 0;
+}
+
+// ---------------------------------------------------------------- calibrate-study
+
+struct CalibrateStudyOptions {
+  std::vector<double> noise = {0.0, 0.5, 1.0, 2.0, 4.0};
+  std::vector<int> poses = {3, 4, 6, 10};
+  int runs = 5;
+  std::string board = "600x450x10";
+  double outliers = 0.0;
+  unsigned seed = 1;
+};
+
+int run_calibrate_study(const CalibrateStudyOptions& o) {
+  DepthCalibrationStudyOptions so;
+  if (const std::string e = parse_size3(o.board, so.board); !e.empty()) throw UsageError(e);
+  so.noise_mm = o.noise;
+  so.poses = o.poses;
+  so.runs = o.runs;
+  so.outlier_fraction = o.outliers;
+  so.seed = o.seed;
+  const std::vector<DepthCalibrationStudyRow> rows = study_depth_calibration(so);
+  std::printf("| depth noise σ (mm) | poses k | calibrations | rotation error (°) mean / max | translation error "
+              "(mm) mean / max |\n|---|---|---|---|---|\n");
+  for (const DepthCalibrationStudyRow& r : rows) {
+    const std::string failed = r.failed > 0 ? fmt::format(" ({} refused)", r.failed) : "";
+    if (r.runs == 0) {
+      std::printf("%s\n", fmt::format("| {:g} | {} | 0{} | — | — |", r.noise_mm, r.poses, failed).c_str());
+      continue;
+    }
+    std::printf("%s\n", fmt::format("| {:g} | {} | {}{} | {:.3f} / {:.3f} | {:.2f} / {:.2f} |", r.noise_mm, r.poses,
+                                    r.runs, failed, r.rotation_mean_deg, r.rotation_max_deg, r.translation_mean_mm,
+                                    r.translation_max_mm)
+                            .c_str());
+  }
+  note(fmt::format("body calibrate-study: {} noise levels x {} pose counts x {} runs on the seed's rig (board {}, "
+                   "depths in 1 mm units{})",
+                   o.noise.size(), o.poses.size(), o.runs, o.board,
+                   o.outliers > 0 ? fmt::format(", {:g} % outliers", 100.0 * o.outliers) : ""));
   return 0;
 }
 
@@ -398,6 +445,24 @@ void add_body_depth_commands(CLI::App& body, Action& action) {
   fuse->add_option("--rig", f->rig, "The rig.json of body render-depth (for --truth)");
   fuse->add_flag("--json", f->json, "Print the report");
   fuse->callback([f, &action] { action = [f] { return run_fuse(*f); }; });
+
+  auto* study = body.add_subcommand(
+      "calibrate-study", "How well body calibrate recovers a known rig against the depth noise and the number of "
+                         "board poses k: synthetic boards on the seed's rig, calibrated, compared with the truth "
+                         "(a Markdown table on stdout)");
+  auto s = std::make_shared<CalibrateStudyOptions>();
+  study->add_option("--noise", s->noise, "Depth noise sigmas, comma-separated (mm, default 0,0.5,1,2,4)")
+      ->delimiter(',')
+      ->check(number_in(0.0, 100.0));
+  study->add_option("--poses", s->poses, "Numbers of board poses k, comma-separated (default 3,4,6,10)")
+      ->delimiter(',')
+      ->check(CLI::Range(3, 100));
+  study->add_option("--runs", s->runs, "Random pose sets per noise and k (default 5)")->check(CLI::Range(1, 1000));
+  study->add_option("--board", s->board, "Board WIDTHxHEIGHTxTHICKNESS (mm, default 600x450x10)");
+  study->add_option("--outliers", s->outliers, "Fraction of pixels replaced by random depths (default 0)")
+      ->check(number_in(0.0, 0.5));
+  study->add_option("--seed", s->seed, "Seed of the poses and the noise (default 1)");
+  study->callback([s, &action] { action = [s] { return run_calibrate_study(*s); }; });
 }
 
 }  // namespace knitforge::cli

@@ -46,14 +46,14 @@ namespace knitforge::cli {
 
 namespace {
 
-// The value as the user typed it, cut to 40 printable characters.
+// The value as the user typed it, printable, at most 63 characters: a longer
+// one keeps its first 20 and its last 40 (a path's file name is at its end).
 std::string shown(const std::string& text) {
+  constexpr size_t kHead = 20, kTail = 40;
   std::string out;
-  for (unsigned char c : text) {
-    if (out.size() >= 40) return out + "...";
-    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
-  }
-  return out;
+  for (unsigned char c : text) out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  if (out.size() <= kHead + kTail + 3) return out;
+  return out.substr(0, kHead) + "..." + out.substr(out.size() - kTail);
 }
 
 CLI::Validator number_validator(const std::string& name, std::function<std::string(double)> check) {

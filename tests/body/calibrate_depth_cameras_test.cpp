@@ -7,6 +7,7 @@
 #include <random>
 
 #include "knitforge/body/render_depth_image.h"
+#include "knitforge/body/study_depth_calibration.h"
 #include "knitforge/body/synthetic_depth_scenes.h"
 #include "knitforge/util/errors.h"
 
@@ -41,29 +42,6 @@ struct CalibrationError {
 CalibrationError error_of(const RigidTransform& found, const DepthRig& rig) {
   const RigidTransform truth = camera2_to_camera1(rig);
   return {rotation_angle_between_deg(found.rotation, truth.rotation), (found.translation - truth.translation).norm()};
-}
-
-// What the cameras give: depths rounded to their 1 mm units (a 16-bit PNG).
-void quantise(DepthImage& img) {
-  for (double& z : img.depth_mm) z = z > 0.0 ? std::max(1.0, std::round(z)) : 0.0;
-}
-
-std::vector<BoardCapture> captures(const DepthRig& rig, const std::vector<RigidTransform>& poses, const BoardSize& b,
-                                   double sigma, double outliers, unsigned seed) {
-  std::vector<BoardCapture> caps;
-  for (size_t i = 0; i < poses.size(); ++i) {
-    const TriMesh m = board_mesh(b, poses[i]);
-    BoardCapture c{render_depth_image(m, rig.camera1, rig.world_to_camera1),
-                   render_depth_image(m, rig.camera2, rig.world_to_camera2), "pose"};
-    if (sigma > 0.0 || outliers > 0.0) {
-      add_depth_noise(c.image1, {sigma, outliers, seed + 2 * static_cast<unsigned>(i)});
-      add_depth_noise(c.image2, {sigma, outliers, seed + 2 * static_cast<unsigned>(i) + 1});
-      quantise(c.image1);
-      quantise(c.image2);
-    }
-    caps.push_back(std::move(c));
-  }
-  return caps;
 }
 
 }  // namespace
@@ -152,8 +130,13 @@ TEST(CalibrateDepthCameras, RenderedNoiselessBoardsGiveTheRigExactly) {
   ro.inlier_distance_mm = 1e-6;  // only the large sides (no noise): the thin edges are off the plane
   DepthCalibrationOptions co;
   co.thickness_mm = 10.0;
-  const DepthImageCalibration r =
-      calibrate_from_depth_images(captures(rig, poses, {}, 0.0, 0.0, 1), rig.camera1, rig.camera2, {}, ro, co);
+  std::vector<BoardCapture> exact;  // not rounded to the cameras' 1 mm units
+  for (const RigidTransform& pose : poses) {
+    const TriMesh m = board_mesh({}, pose);
+    exact.push_back({render_depth_image(m, rig.camera1, rig.world_to_camera1),
+                     render_depth_image(m, rig.camera2, rig.world_to_camera2), "pose"});
+  }
+  const DepthImageCalibration r = calibrate_from_depth_images(exact, rig.camera1, rig.camera2, {}, ro, co);
   const CalibrationError e = error_of(r.calibration.camera2_to_camera1, rig);
   EXPECT_LT(e.rotation_deg, 1e-7);
   EXPECT_LT(e.translation_mm, 1e-6);
@@ -173,8 +156,8 @@ TEST(CalibrateDepthCameras, WithOneMillimetreNoiseTheErrorIsWithinTheBarForEvery
     for (int s = 0; s < runs; ++s) {
       const auto seed = static_cast<unsigned>(100 * k + s);
       const std::vector<RigidTransform> poses = random_board_poses(rig, k, seed);
-      const DepthImageCalibration r = calibrate_from_depth_images(captures(rig, poses, {}, 1.0, 0.02, seed),
-                                                                  rig.camera1, rig.camera2, {}, {}, co);
+      const DepthImageCalibration r = calibrate_from_depth_images(
+          synthetic_board_captures(rig, poses, {}, {1.0, 0.02, seed}), rig.camera1, rig.camera2, {}, {}, co);
       const CalibrationError e = error_of(r.calibration.camera2_to_camera1, rig);
       rot_sum += e.rotation_deg;
       tr_sum += e.translation_mm;

@@ -4,11 +4,15 @@
 #define CGAL_EIGEN3_ENABLED  // CGAL's Poisson solver uses Eigen (found by CMake)
 #endif
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/poisson_surface_reconstruction.h>
@@ -27,6 +31,35 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Vector = Kernel::Vector_3;
 using PointWithNormal = std::pair<Point, Vector>;
+
+// The mesher hands its facets over from containers ordered by memory
+// address, so the same surface comes out in another face (and possibly
+// vertex) order from call to call. Canonical order: vertices sorted by
+// position, each face rotated to start at its smallest index (orientation
+// kept), faces sorted.
+TriMesh in_canonical_order(const TriMesh& mesh) {
+  std::vector<int> order(mesh.vertices.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](int i) {
+    const Vec3& p = mesh.vertices[static_cast<size_t>(i)];
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  TriMesh out;
+  std::vector<int> new_index(mesh.vertices.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    new_index[static_cast<size_t>(order[k])] = static_cast<int>(k);
+    out.vertices.push_back(mesh.vertices[static_cast<size_t>(order[k])]);
+  }
+  for (const auto& f : mesh.faces) {
+    std::array<int, 3> g{new_index[static_cast<size_t>(f[0])], new_index[static_cast<size_t>(f[1])],
+                         new_index[static_cast<size_t>(f[2])]};
+    std::rotate(g.begin(), std::min_element(g.begin(), g.end()), g.end());
+    out.faces.push_back(g);
+  }
+  std::sort(out.faces.begin(), out.faces.end());
+  return out;
+}
 
 }  // namespace
 
@@ -56,6 +89,10 @@ PoissonResult poisson_reconstruct(const OrientedPoints& cloud, const PoissonOpti
                                 pts, 6, CGAL::parameters::point_map(point_map));
   CGAL::Surface_mesh<Point> surface;
   bool ok = false;
+  // The surface mesher draws its initial points from CGAL's default random
+  // generator (per thread, seeded by the clock, and advanced by every call):
+  // a fixed seed makes the mesh the same for the same cloud.
+  CGAL::get_default_random() = CGAL::Random(0);
   try {
     ok = CGAL::poisson_surface_reconstruction_delaunay(pts.begin(), pts.end(), point_map, normal_map, surface,
                                                        result.spacing_mm, o.angle_deg, o.radius, o.distance);
@@ -67,18 +104,20 @@ PoissonResult poisson_reconstruct(const OrientedPoints& cloud, const PoissonOpti
                                   "converge or the normals are inconsistent: they must point out of the object)",
                                   n));
   // A fresh Surface_mesh has no removed elements: indices are 0..n-1.
+  TriMesh mesh;
   for (const auto v : surface.vertices()) {
     const Point& p = surface.point(v);
-    result.mesh.vertices.emplace_back(p.x(), p.y(), p.z());
+    mesh.vertices.emplace_back(p.x(), p.y(), p.z());
   }
   for (const auto f : surface.faces()) {
     const auto h = surface.halfedge(f);
     if (surface.next(surface.next(surface.next(h))) != h)
       throw SolverError("Poisson reconstruction: the mesher returned a face that is not a triangle");
-    result.mesh.faces.push_back({static_cast<int>(surface.target(h).idx()),
-                                 static_cast<int>(surface.target(surface.next(h)).idx()),
-                                 static_cast<int>(surface.source(h).idx())});
+    mesh.faces.push_back({static_cast<int>(surface.target(h).idx()),
+                          static_cast<int>(surface.target(surface.next(h)).idx()),
+                          static_cast<int>(surface.source(h).idx())});
   }
+  result.mesh = in_canonical_order(mesh);
   return result;
 }
 
