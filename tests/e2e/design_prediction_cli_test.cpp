@@ -78,8 +78,16 @@ TEST_F(DesignPrediction, ShortRowSaysWhenThePredictionDidNotConverge) { expect_u
 
 TEST_F(DesignPrediction, FlattenReportsTheConvergedPredictionAsPredictDoes) {
   expect_converged_as_predict(kFlatten);
-  // The report page carries report.json, prediction included.
-  EXPECT_NE(slurp(path("d/report.html")).find("\"prediction\""), std::string::npos);
+  // The report page embeds report.json, the converged prediction included.
+  const std::string html = slurp(path("d/report.html"));
+  const std::string open = "<script type=\"application/json\" id=\"knitforge-data\">";
+  const size_t begin = html.find(open);
+  ASSERT_NE(begin, std::string::npos);
+  const size_t end = html.find("</script>", begin);
+  const nlohmann::json data = nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+  EXPECT_TRUE(data["metrics"]["prediction"]["converged"].get<bool>());
+  EXPECT_EQ(data["metrics"]["prediction"]["shape_error_mm"],
+            nlohmann::json::parse(slurp(path("d/report.json")))["prediction"]["shape_error_mm"]);
 }
 
 TEST_F(DesignPrediction, FlattenSaysWhenThePredictionDidNotConverge) { expect_unconverged_and_skipped(kFlatten); }
