@@ -241,6 +241,18 @@ void add_design_predict_options(CLI::App& cmd, DesignPredictOptions& options);
 nlohmann::json design_prediction(const DesignPredictOptions& options, const std::string& outdir,
                                  const StitchMesh& designed, const KnitParams& params, const TriMesh& target,
                                  bool ascii, std::string& summary);
+/// A design route's shape results in report.json, the same for every route:
+/// "evaluation" (evaluation_json() of the route's Shape-Up evaluation, when
+/// it ran, with "predictor" saying it is a preview, not a converged shape) and
+/// "prediction" (design_prediction() of `designed` against `target`, the
+/// surface the route designed for; --no-evaluate skips it unless --predict).
+/// Returns the lines to note at the end of the run: the preview's shape
+/// error, then the prediction's (either may be absent).
+std::vector<std::string> report_design_shape(nlohmann::json& report, const DesignPredictOptions& options,
+                                             bool no_evaluate, const std::string& outdir,
+                                             const StitchMesh& designed, const KnitParams& params,
+                                             const TriMesh& target, const StitchMeshEvaluation* evaluation,
+                                             bool ascii);
 
 /// One line on stderr: "knitforge: <message>" (progress and notes).
 void note(const std::string& message);

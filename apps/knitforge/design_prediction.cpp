@@ -1,6 +1,7 @@
 // The design routes' converged predicted shape (cli_common.h,
 // design_prediction()): the same free equilibrium and shape-error measure as
-// `knitforge predict DESIGN_DIR`.
+// `knitforge predict DESIGN_DIR`; report_design_shape(), the evaluation and
+// prediction sections every design route writes.
 #include <filesystem>
 
 #include <fmt/core.h>
@@ -74,6 +75,28 @@ nlohmann::json design_prediction(const DesignPredictOptions& options, const std:
   }
   j["seconds"] = t.seconds();
   return j;
+}
+
+std::vector<std::string> report_design_shape(nlohmann::json& report, const DesignPredictOptions& options,
+                                             bool no_evaluate, const std::string& outdir,
+                                             const StitchMesh& designed, const KnitParams& params,
+                                             const TriMesh& target, const StitchMeshEvaluation* evaluation,
+                                             bool ascii) {
+  std::vector<std::string> lines;
+  if (evaluation) {
+    report["evaluation"] = evaluation_json(*evaluation);
+    report["evaluation"]["predictor"] = "Shape-Up preview (not a converged shape)";
+    lines.push_back(fmt::format(
+        "preview (Shape-Up) shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
+        evaluation->rms_error, evaluation->max_error, 100 * evaluation->relative_rms_error,
+        100 * evaluation->relative_max_error));
+  }
+  DesignPredictOptions po = options;
+  po.skip = po.skip || (no_evaluate && !po.force);
+  std::string summary;
+  report["prediction"] = design_prediction(po, outdir, designed, params, target, ascii, summary);
+  if (!summary.empty()) lines.push_back(summary);
+  return lines;
 }
 
 }  // namespace knitforge::cli

@@ -47,6 +47,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
     bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
     DesignMachineOptions mach;
+    DesignPredictOptions predict;
   };
   auto o = std::make_shared<Opts>();
   const std::string names = shape_name_list();
@@ -74,6 +75,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   add_design_machine_options(*cmd, o->mach);
+  add_design_predict_options(*cmd, o->predict);
   cmd->callback([=, &action] {
     action = [=]() -> int {
       Timer all;
@@ -274,18 +276,10 @@ void add_flatten_command(CLI::App& app, Action& action) {
       if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
       const double machine_seconds = tm.seconds();
       report["knittable"] = k.knittability.ok() && machine_ok;
-      if (k.evaluation) {
-        const StitchMeshEvaluation& ev = *k.evaluation;
-        report["evaluation"] = {
-            {"shape_error_mm", {{"rms", ev.rms_error}, {"max", ev.max_error}}},
-            {"shape_error_relative", {{"rms", ev.relative_rms_error}, {"max", ev.relative_max_error}}},
-            {"part_size_mm", ev.target_size},
-            {"designed_error_mm", {{"rms", ev.designed_rms_error}, {"max", ev.designed_max_error}}},
-            {"relaxation", {{"iterations", ev.relax_iterations}, {"converged", ev.relax_converged}}},
-            {"stitch_error_mm", scalar_stats_json(ev.stitch_error_stats)},
-            {"stitch_distortion_designed", scalar_stats_json(ev.designed_distortion_stats)},
-            {"stitch_distortion_relaxed", scalar_stats_json(ev.relaxed_distortion_stats)}};
-      }
+      // The lifted stitch mesh the route evaluated, against the surface it was designed for.
+      const std::vector<std::string> shape_notes =
+          report_design_shape(report, o->predict, o->no_evaluate, o->outdir, k.designed, params, surface,
+                              k.evaluation ? &*k.evaluation : nullptr, o->ascii);
       report["seconds"] = {{"load", load_seconds},
                            {"flatten_without_darts", plain_seconds},
                            {"flatten_with_darts", darts_seconds},
@@ -317,11 +311,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
                          flat.flipped_faces.size()));
         return 1;
       }
-      if (k.evaluation) {
-        note(fmt::format("shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
-                         k.evaluation->rms_error, k.evaluation->max_error,
-                         100 * k.evaluation->relative_rms_error, 100 * k.evaluation->relative_max_error));
-      }
+      for (const std::string& line : shape_notes) note(line);
       if (!k.knittability.ok()) {
         std::fprintf(stderr, "%s", k.knittability.text().c_str());
         note("the map is NOT knittable (details in report.json); outputs were written for inspection");

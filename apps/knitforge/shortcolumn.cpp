@@ -157,6 +157,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
     int budget = 100, alternatives = 10, proxy_faces = 3000;
     uint64_t seed = 0;
     DesignMachineOptions mach;
+    DesignPredictOptions predict;
   };
   auto o = std::make_shared<Opts>();
   const std::string names = shape_name_list();
@@ -200,6 +201,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
   add_cut_option(*cmd, o->cut);
   add_max_stitches_option(*cmd, o->max_stitches);
   add_design_machine_options(*cmd, o->mach);
+  add_design_predict_options(*cmd, o->predict);
   bc->excludes(field);
   field->excludes(bc);
   opt->excludes(field);
@@ -382,10 +384,10 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
         write_mesh(out("target.ply"), surface, plain);
       }
       nlohmann::json report;
-      if (d.evaluation) {
-        write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
-        report["evaluation"] = evaluation_json(*d.evaluation);
-      }
+      if (d.evaluation) write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
+      const std::vector<std::string> shape_notes =
+          report_design_shape(report, o->predict, o->no_evaluate, o->outdir, d.stitch_mesh, params, surface,
+                              d.evaluation ? &*d.evaluation : nullptr, o->ascii);
       const double expected = d.surface_area / (params.stitch_width * params.stitch_height);
       report["input"] = {{"surface", description},
                          {"units", o->units},
@@ -495,6 +497,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
                        d.counts.stitches, d.counts.short_row_ends, d.counts.increases, d.counts.decreases,
                        d.counts.transfers(), d.metric.transfer_estimate(params.stitch_width), d.map.rows, d.map.cols,
                        all.seconds(), o->outdir));
+      for (const std::string& line : shape_notes) note(line);
       if (!d.knittable()) {
         const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
         std::fprintf(stderr, "%s", r.text().c_str());

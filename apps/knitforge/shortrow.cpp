@@ -275,15 +275,10 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         write_mesh(out("target.ply"), surface, plain);
       }
       nlohmann::json report;
-      if (d.evaluation) {
-        write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
-        report["evaluation"] = evaluation_json(*d.evaluation);
-        report["evaluation"]["predictor"] = "Shape-Up preview (not a converged shape)";
-      }
-      std::string prediction_note;
-      DesignPredictOptions po = o->predict;
-      po.skip = po.skip || (o->no_evaluate && !po.force);
-      report["prediction"] = design_prediction(po, o->outdir, d.stitch_mesh, params, surface, o->ascii, prediction_note);
+      if (d.evaluation) write_evaluation_files(o->outdir, d.stitch_mesh, *d.evaluation, o->ascii);
+      const std::vector<std::string> shape_notes =
+          report_design_shape(report, o->predict, o->no_evaluate, o->outdir, d.stitch_mesh, params, surface,
+                              d.evaluation ? &*d.evaluation : nullptr, o->ascii);
       const auto types = count_stitch_types(d.stitch_mesh);
       const int short_row_ends = types[static_cast<int>(StitchType::ShortRowLeft)] +
                                  types[static_cast<int>(StitchType::ShortRowRight)];
@@ -368,12 +363,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
           "{} stitches ({} short-row ends), {} courses x {} columns, {} wales, {} cuts; {:.2f} s -> {}",
           d.stitch_mesh.num_stitches(), short_row_ends, d.map.rows, d.map.cols, d.wales.num_wales(),
           d.wales.cuts.size(), all.seconds(), o->outdir));
-      if (d.evaluation) {
-        note(fmt::format("preview (Shape-Up) shape error RMS {:.3f} mm, max {:.3f} mm ({:.2f} % / {:.2f} % of the part size)",
-                         d.evaluation->rms_error, d.evaluation->max_error,
-                         100 * d.evaluation->relative_rms_error, 100 * d.evaluation->relative_max_error));
-      }
-      if (!prediction_note.empty()) note(prediction_note);
+      for (const std::string& line : shape_notes) note(line);
       if (!(d.map_check.ok() && d.mesh_check.ok())) {
         const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
         std::fprintf(stderr, "%s", r.text().c_str());

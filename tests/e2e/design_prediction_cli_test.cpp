@@ -1,37 +1,101 @@
 // The design routes' converged predicted shape (cli_common.h,
-// design_prediction()): shortrow on a small built-in disk reports the same
-// converged error as `knitforge predict` on its output, and an unconverged
-// prediction is reported as such, without an error number.
+// report_design_shape()): shortrow, flatten and shortcolumn on a small
+// built-in disk each report the same converged error as `knitforge predict`
+// on their output (so the prediction is of the stitch mesh the route wrote,
+// against the surface it designed for), and an unconverged prediction is
+// reported as such, without an error number.
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
 
 using namespace knitforge_e2e;
 
-TEST_F(Cli, ShortRowReportsTheConvergedPredictionAsPredictDoes) {
-  CliRun r = run("shortrow disk --stitch 5x4 --no-report --no-knitout -o " + path("d"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("preview (Shape-Up)"), std::string::npos) << r.err;
-  const nlohmann::json j = nlohmann::json::parse(slurp(path("d/report.json")));
-  ASSERT_TRUE(j["prediction"].is_object()) << j.dump();
-  EXPECT_TRUE(j["prediction"]["converged"].get<bool>());
-  r = run("predict " + path("d") + " -o " + path("p"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  const nlohmann::json p = nlohmann::json::parse(slurp(path("p/predict.json")));
-  EXPECT_NEAR(j["prediction"]["shape_error_mm"]["rms"].get<double>(), p["shape_error"]["rms_mm"].get<double>(), 1e-6);
-  EXPECT_NEAR(j["prediction"]["shape_error_mm"]["max"].get<double>(), p["shape_error"]["max_mm"].get<double>(), 1e-6);
-  EXPECT_TRUE(fs::exists(path("d/predicted.ply")));
+namespace {
+
+// Small designs (300 to 800 stitches, seconds each) of the three routes. The
+// flatten route on a curved surface: on the flat disk its long rows (added
+// beyond the pattern) leave the free equilibrium unconverged after 500 Newton
+// iterations.
+const char* const kShortRow = "shortrow disk --stitch 5x4 --no-report --no-knitout";
+const char* const kFlatten = "flatten hemisphere --stitch 8x6 --no-knitout";
+const char* const kShortColumn =
+    "shortcolumn disk --stitch 5x4 --bc 0.84,0.84,1.34,1.34 --no-compare --no-report --no-knitout";
+
+class DesignPrediction : public Cli {
+ protected:
+  /// `design -o DIR` reports a converged prediction with a finite error
+  /// (RMS <= max), labels its Shape-Up number a preview, writes
+  /// predicted.ply, and its error is `knitforge predict DIR`'s.
+  void expect_converged_as_predict(const std::string& design) {
+    CliRun r = run(design + " -o " + path("d"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("preview (Shape-Up)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("predicted shape error RMS"), std::string::npos) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(path("d/report.json")));
+    EXPECT_EQ(j["evaluation"]["predictor"], "Shape-Up preview (not a converged shape)");
+    const nlohmann::json& pr = j["prediction"];
+    ASSERT_TRUE(pr.is_object()) << j.dump();
+    EXPECT_TRUE(pr["converged"].get<bool>()) << pr.dump();
+    const double rms = pr["shape_error_mm"]["rms"].get<double>(), max = pr["shape_error_mm"]["max"].get<double>();
+    EXPECT_TRUE(std::isfinite(rms) && std::isfinite(max)) << pr.dump();
+    EXPECT_GT(rms, 0.0);
+    EXPECT_LE(rms, max);
+    EXPECT_TRUE(fs::exists(path("d/predicted.ply")));
+    r = run("predict " + path("d") + " -o " + path("p"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json p = nlohmann::json::parse(slurp(path("p/predict.json")));
+    EXPECT_NEAR(rms, p["shape_error"]["rms_mm"].get<double>(), 1e-6);
+    EXPECT_NEAR(max, p["shape_error"]["max_mm"].get<double>(), 1e-6);
+  }
+
+  /// With one Newton iteration the prediction of `design` does not converge
+  /// (converged false, a null error, no predicted.ply); --no-predict runs none.
+  void expect_unconverged_and_skipped(const std::string& design) {
+    CliRun r = run(design + " --predict-max-iterations 1 -o " + path("d"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("NOT converged"), std::string::npos) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(path("d/report.json")));
+    EXPECT_FALSE(j["prediction"]["converged"].get<bool>());
+    EXPECT_TRUE(j["prediction"]["shape_error_mm"].is_null());
+    EXPECT_FALSE(fs::exists(path("d/predicted.ply")));
+    r = run(design + " --no-predict -o " + path("n"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("predicted shape"), std::string::npos) << r.err;
+    EXPECT_TRUE(nlohmann::json::parse(slurp(path("n/report.json")))["prediction"].is_null());
+    EXPECT_FALSE(fs::exists(path("n/predicted.ply")));
+  }
+};
+
+}  // namespace
+
+TEST_F(DesignPrediction, ShortRowReportsTheConvergedPredictionAsPredictDoes) {
+  expect_converged_as_predict(kShortRow);
 }
 
-TEST_F(Cli, ShortRowSaysWhenThePredictionDidNotConverge) {
-  CliRun r = run("shortrow disk --stitch 5x4 --no-report --no-knitout --predict-max-iterations 1 -o " + path("d"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("NOT converged"), std::string::npos) << r.err;
-  const nlohmann::json j = nlohmann::json::parse(slurp(path("d/report.json")));
-  EXPECT_FALSE(j["prediction"]["converged"].get<bool>());
-  EXPECT_TRUE(j["prediction"]["shape_error_mm"].is_null());
-  EXPECT_FALSE(fs::exists(path("d/predicted.ply")));
-  r = run("shortrow disk --stitch 5x4 --no-report --no-knitout --no-predict -o " + path("n"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(nlohmann::json::parse(slurp(path("n/report.json")))["prediction"].is_null());
+TEST_F(DesignPrediction, ShortRowSaysWhenThePredictionDidNotConverge) { expect_unconverged_and_skipped(kShortRow); }
+
+TEST_F(DesignPrediction, FlattenReportsTheConvergedPredictionAsPredictDoes) {
+  expect_converged_as_predict(kFlatten);
+  // The report page embeds report.json, the converged prediction included.
+  const std::string html = slurp(path("d/report.html"));
+  const std::string open = "<script type=\"application/json\" id=\"knitforge-data\">";
+  const size_t begin = html.find(open);
+  ASSERT_NE(begin, std::string::npos);
+  const size_t end = html.find("</script>", begin);
+  const nlohmann::json data = nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+  EXPECT_TRUE(data["metrics"]["prediction"]["converged"].get<bool>());
+  EXPECT_EQ(data["metrics"]["prediction"]["shape_error_mm"],
+            nlohmann::json::parse(slurp(path("d/report.json")))["prediction"]["shape_error_mm"]);
+}
+
+TEST_F(DesignPrediction, FlattenSaysWhenThePredictionDidNotConverge) { expect_unconverged_and_skipped(kFlatten); }
+
+TEST_F(DesignPrediction, ShortColumnReportsTheConvergedPredictionAsPredictDoes) {
+  expect_converged_as_predict(kShortColumn);
+}
+
+TEST_F(DesignPrediction, ShortColumnSaysWhenThePredictionDidNotConverge) {
+  expect_unconverged_and_skipped(kShortColumn);
 }
