@@ -137,9 +137,10 @@ int run_tube_design(const TubeCommandOptions& o) {
                    "decreases; {:.2f} s -> {}",
                    d.stitch_mesh.num_stitches(), d.map.rows, static_cast<int>(d.rounds.size()) - 1, d.map.cols, d.round_stitches.front(),
                    d.round_stitches.back(), d.increases, d.decreases, all.seconds(), o.outdir));
-  note(fmt::format("tube: {} short rows ({} turns) in {} wedges{}; course spacing / sh along the inside of the bend "
+  note(fmt::format("tube: {} short rows ({} turns) in {} wedges{}, stitches {:+.1f} % of area / (sw sh); course spacing / sh along the inside of the bend "
                    "{:.2f}..{:.2f}, along the outside {:.2f}..{:.2f}, taller than 1.25 sh: {} of {} stitches (outside / inside rim to rim {:.2f})",
                    d.short_rows, d.turns, d.wedges, o.short_rows ? "" : " (--no-tube-short-rows)",
+                   100.0 * (d.stitch_mesh.num_stitches() / expected - 1.0),
                    d.course_spacing.inside.min, d.course_spacing.inside.max, d.course_spacing.outside.min,
                    d.course_spacing.outside.max, d.course_spacing.all.taller, d.course_spacing.all.stitches, d.bend_ratio));
   if (!knittable) {
