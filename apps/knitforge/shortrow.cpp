@@ -115,6 +115,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double field_tolerance = -1;
     double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false, tube = false;
+    bool no_tube_short_rows = false;
     DesignMachineOptions mach;
     DesignPredictOptions predict;
   };
@@ -158,6 +159,10 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_flag("--tube", o->tube,
                 "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
                 "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam");
+  cmd->add_flag("--no-tube-short-rows", o->no_tube_short_rows,
+                "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
+                "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
+                "where the outside lies further apart)");
   add_design_machine_options(*cmd, o->mach);
   add_design_predict_options(*cmd, o->predict);
   cmd->callback([=, &action] {
@@ -185,8 +190,11 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         t.ascii = o->ascii;
         t.no_report = o->no_report;
         t.mach = o->mach;
+        t.short_rows = !o->no_tube_short_rows;
         return run_tube_design(t);
       }
+      if (o->no_tube_short_rows)
+        throw UsageError("--no-tube-short-rows applies to --tube only; leave it out or add --tube");
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);

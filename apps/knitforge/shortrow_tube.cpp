@@ -33,6 +33,7 @@ int run_tube_design(const TubeCommandOptions& o) {
   TubeDesignOptions opt;
   opt.params = params;
   opt.surface_name = description;
+  opt.short_rows = o.short_rows;
   auto begun = std::make_shared<int>(0);
   opt.progress = [begun](const std::string& stage) { note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / 5, stage)); };
   const TubeDesign d = design_tube(input, opt);
@@ -91,7 +92,11 @@ int run_tube_design(const TubeCommandOptions& o) {
                       {"quads", types[static_cast<int>(StitchType::Knit)]},
                       {"increases", d.increases},
                       {"decreases", d.decreases},
-                      {"short_row_ends", 0},
+                      {"short_row_ends", types[static_cast<int>(StitchType::ShortRowLeft)] +
+                                             types[static_cast<int>(StitchType::ShortRowRight)]},
+                      {"short_rows", d.short_rows},
+                      {"short_row_wedges", d.wedges},
+                      {"short_row_turns", d.turns},
                       {"expected_stitches_area", expected},
                       {"stitches_vs_area", d.stitch_mesh.num_stitches() / expected - 1.0},
                       {"rounds", static_cast<int>(d.rounds.size())},
@@ -100,6 +105,15 @@ int run_tube_design(const TubeCommandOptions& o) {
                       {"round_stitches", d.round_stitches},
                       {"ideal_round_stitches", d.ideal_stitches},
                       {"rounds_off_ideal_by_more_than_1", off_by_more}};
+  auto side = [](const SideSpacing& s) {
+    return nlohmann::json{{"stitches", s.stitches}, {"min_height_over_sh", s.min}, {"max_height_over_sh", s.max},
+                          {"taller_than_1_25_sh", s.taller}};
+  };
+  report["course_spacing"] = {{"short_rows", o.short_rows},
+                              {"bend_ratio", d.bend_ratio},
+                              {"inside", side(d.course_spacing.inside)},
+                              {"outside", side(d.course_spacing.outside)},
+                              {"all", side(d.course_spacing.all)}};
   report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
   Timer tm;
   bool machine_ok = true;
@@ -119,10 +133,16 @@ int run_tube_design(const TubeCommandOptions& o) {
     write_report_html(o.outdir);
     note("report page -> " + out("report.html"));
   }
-  note(fmt::format("tube: {} stitches in {} rounds x {} columns ({} to {} stitches round), {} increases, {} decreases; "
-                   "{:.2f} s -> {}",
-                   d.stitch_mesh.num_stitches(), d.map.rows, d.map.cols, d.round_stitches.front(),
+  note(fmt::format("tube: {} stitches in {} courses ({} rounds) x {} columns ({} to {} stitches round), {} increases, {} "
+                   "decreases; {:.2f} s -> {}",
+                   d.stitch_mesh.num_stitches(), d.map.rows, static_cast<int>(d.rounds.size()) - 1, d.map.cols, d.round_stitches.front(),
                    d.round_stitches.back(), d.increases, d.decreases, all.seconds(), o.outdir));
+  note(fmt::format("tube: {} short rows ({} turns) in {} wedges{}, stitches {:+.1f} % of area / (sw sh); course spacing / sh along the inside of the bend "
+                   "{:.2f}..{:.2f}, along the outside {:.2f}..{:.2f}, taller than 1.25 sh: {} of {} stitches (outside / inside rim to rim {:.2f})",
+                   d.short_rows, d.turns, d.wedges, o.short_rows ? "" : " (--no-tube-short-rows)",
+                   100.0 * (d.stitch_mesh.num_stitches() / expected - 1.0),
+                   d.course_spacing.inside.min, d.course_spacing.inside.max, d.course_spacing.outside.min,
+                   d.course_spacing.outside.max, d.course_spacing.all.taller, d.course_spacing.all.stitches, d.bend_ratio));
   if (!knittable) {
     const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
     std::fprintf(stderr, "%s", r.text().c_str());

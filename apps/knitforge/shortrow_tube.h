@@ -12,6 +12,7 @@ struct TubeCommandOptions {
   std::string input, outdir, stitch, units;
   double edge = 0.0, max_stitches = 0.0;
   bool json = false, ascii = false, no_report = false;
+  bool short_rows = true;  ///< !--no-tube-short-rows
   DesignMachineOptions mach;
 };
 

@@ -24,6 +24,40 @@ TEST_F(Cli, ShortrowTubeDesignsTheSleeveKnitsAndSimulatesIt) {
   EXPECT_NE((r.out + r.err).find("MATCHES the map"), std::string::npos) << r.err << r.out;
 }
 
+TEST_F(Cli, ShortrowTubeKnitsTheSleevesBendWithShortRowsOnBothMachines) {
+  const std::string out = path("sleeve_sr");
+  CliRun r = run("shortrow sleeve --tube --edge 5 --no-report -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("shima-swg091n2: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
+  const std::string csv = slurp(fs::path(out) / "knitting_map.csv");
+  EXPECT_NE(csv.find(",-,"), std::string::npos) << "no open row (short row)";
+  EXPECT_NE(csv.find(",L"), std::string::npos) << "no short-row end";
+  const std::string report = slurp(fs::path(out) / "report.json");
+  EXPECT_EQ(report.find("\"short_rows\": 0,"), std::string::npos) << report;
+  const std::string k = path("sleeve_sr.k");
+  r = run("knitout " + out + "/knitting_map.csv --machine kniterate -o " + k);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("simulate " + k + " --machine kniterate --against " + out + "/knitting_map.csv");
+  EXPECT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE((r.out + r.err).find("MATCHES the map"), std::string::npos) << r.err << r.out;
+
+  const std::string plain = path("sleeve_plain");
+  r = run("shortrow sleeve --tube --edge 5 --no-tube-short-rows --no-report -o " + plain);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(fs::path(plain) / "knitting_map.csv").find(",-,"), std::string::npos) << "a short row without them";
+  r = run("shortrow sleeve --no-tube-short-rows --edge 8 -o " + path("sheet"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--no-tube-short-rows applies to --tube only"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, ShortrowTubeKnitsAStraightTubeWithoutShortRows) {
+  const std::string out = path("tube");
+  CliRun r = run("shortrow tube --tube --stitch 7x5.6 --edge 5 --no-report -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("0 short rows (0 turns) in 0 wedges,"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(fs::path(out) / "knitting_map.csv").find(",-,"), std::string::npos);
+}
+
 TEST_F(Cli, ShortrowTubeRefusesASurfaceWithoutTwoLoopsAndWritesNothing) {
   const std::string out = path("hemi");
   CliRun r = run("shortrow hemisphere --tube --edge 5 -o " + out);

@@ -198,6 +198,14 @@ YarnModel stitch_mesh_to_yarn(const StitchMesh& mesh, const KnitParams& params, 
   }
   std::vector<int> order;
   order.reserve(n);
+  if (first >= 0 && adj.previous_stitch(0) >= 0) {
+    // The cast-on is a round: a tube with short rows when the walk from
+    // `first` stops early.
+    std::vector<char> seen(n, 0);
+    int count = 0;
+    for (int s = first; s >= 0 && !seen[s]; s = adj.next_stitch(s)) seen[s] = 1, ++count;
+    if (count != n) first = -1;
+  }
   if (first < 0) {
     // A tube (every course a round): no stitch starts the one-stroke order by
     // adjacency; its stitches are numbered in knitting order (as

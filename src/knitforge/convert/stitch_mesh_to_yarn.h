@@ -85,10 +85,13 @@ Vec3 deform_canonical_point(const StitchMesh& mesh, int s, const CanonicalPoint&
 /// neighbours (the yarn was idle in between) are joined by a straight segment.
 ///
 /// Tubes (docs/tubes.md): when every stitch has a predecessor (every course
-/// a round, so the order cannot start from adjacency), the stitches are
-/// taken in index order, which is the knitting order of a tube's stitch
-/// mesh (map_to_stitch_mesh_topology(), the tube design route); each stitch
-/// must then touch the next one.
+/// a round, so the order cannot start from adjacency), or stitch 0 has one
+/// (the cast-on is a round) and the walk from the stitch without one does
+/// not reach every stitch (a tube with short rows: a wedge's first short row
+/// has no predecessor by adjacency), the stitches are taken in index order,
+/// which is the knitting order of a tube's stitch mesh
+/// (map_to_stitch_mesh_topology(), the tube design route); each stitch must
+/// then touch the next one.
 ///
 /// \pre the mesh is knittable in one stroke (check_knittability reports no
 ///      between-row-continuity violation).

@@ -48,6 +48,7 @@ TEST(DesignTube, StraightTubeHasRoundsOfCircumferenceOverWidthAndNoShaping) {
 TEST(DesignTube, SleeveIsKnittableAndItsRoundsFollowTheCircumference) {
   TubeDesignOptions o;
   o.params = {3.5, 2.8};
+  o.short_rows = false;  // plain rounds, one stitch height apart on average
   const SleeveShape s;
   const TubeDesign d = design_tube(sleeve(s, 4.0), o);
   EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
@@ -69,6 +70,38 @@ TEST(DesignTube, SleeveIsKnittableAndItsRoundsFollowTheCircumference) {
   EXPECT_EQ(count_cells(d.map, CellType::Decrease), d.decreases);
 }
 
+TEST(DesignTube, BentSleeveGetsShortRowsByDefaultAndStaysKnittable) {
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const TriMesh m = sleeve(SleeveShape{}, 5.0);
+  const TubeDesign d = design_tube(m, o);
+  EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+  EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  EXPECT_GT(d.wedges, 10);
+  EXPECT_EQ(d.map.rows, static_cast<int>(d.rounds.size()) - 1 + d.short_rows);
+  EXPECT_GT(count_cells(d.map, CellType::ShortRowLeft), 0);
+  EXPECT_LT(d.course_spacing.outside.max, 1.1);
+  EXPECT_GT(d.course_spacing.inside.min, 0.9);
+  o.short_rows = false;
+  const TubeDesign plain = design_tube(m, o);
+  EXPECT_EQ(plain.short_rows, 0);
+  EXPECT_GT(plain.course_spacing.outside.min, 1.05);  // what the short rows fix
+  EXPECT_LT(plain.course_spacing.inside.max, 0.92);
+}
+
+TEST(DesignTube, StraightTubeIsTheSameWithOrWithoutShortRows) {
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const TriMesh m = open_tube(40.0, 100.0, 2.5);
+  const TubeDesign a = design_tube(m, o);
+  o.short_rows = false;
+  const TubeDesign b = design_tube(m, o);
+  EXPECT_EQ(a.short_rows, 0);
+  EXPECT_EQ(a.map.cells, b.map.cells);
+  EXPECT_EQ(a.map.seam, b.map.seam);
+  EXPECT_EQ(a.stitch_mesh.vertices, b.stitch_mesh.vertices);
+}
+
 TEST(DesignTube, RefusesASurfaceWithoutTwoBoundaryLoops) {
   TubeDesignOptions o;
   o.surface_name = "hemisphere";
@@ -88,6 +121,7 @@ TEST(DesignTube, NarrowingTubeStartsAtTheLongerRimWhicheverLoopComesFirst) {
   for (Vec3& p : m.vertices) p.z() = -p.z();
   for (auto& f : m.faces) std::swap(f[1], f[2]);
   TubeDesignOptions o;
+  o.short_rows = false;
   const TubeDesign d = design_tube(m, o);
   EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
   EXPECT_GT(d.field.start_length, d.field.end_length);

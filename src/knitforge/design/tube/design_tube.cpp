@@ -23,18 +23,46 @@ TubeDesign design_tube(const TriMesh& surface, const TubeDesignOptions& options)
 
   begin("rounds");
   t.reset();
-  d.levels = round_levels(surface, d.field, options.params.stitch_height);
-  d.rounds = tube_round_curves(surface, d.field, d.levels.levels);
+  TubeShortRows sr;
+  if (options.short_rows) {
+    TubeShortRowOptions so;
+    so.params = options.params;
+    sr = tube_short_rows(surface, d.field, so);
+  }
+  const bool wedges = sr.wedges > 0;
+  if (!wedges) {
+    d.levels = round_levels(surface, d.field, options.params.stitch_height);
+    d.rounds = tube_round_curves(surface, d.field, d.levels.levels);
+  } else {
+    d.levels.levels = sr.levels;
+    for (const auto& a : sr.spacing.along) d.levels.mean_length += a.back() / static_cast<double>(sr.spacing.along.size());
+    d.rounds = sr.rounds;
+  }
   d.seconds.rounds = t.seconds();
 
   begin("tessellation");
   t.reset();
-  RoundsTessellation tess = tessellate_rounds(d.rounds, options.params);
-  d.stitch_mesh = std::move(tess.mesh);
-  d.round_stitches = std::move(tess.stitches);
-  d.ideal_stitches = std::move(tess.ideal);
-  d.increases = tess.increases;
-  d.decreases = tess.decreases;
+  if (!wedges) {
+    RoundsTessellation tess = tessellate_rounds(d.rounds, options.params);
+    d.stitch_mesh = std::move(tess.mesh);
+    d.round_stitches = std::move(tess.stitches);
+    d.ideal_stitches = std::move(tess.ideal);
+    d.increases = tess.increases;
+    d.decreases = tess.decreases;
+  } else {
+    d.stitch_mesh = std::move(sr.mesh);
+    d.round_stitches = sr.wales.stitches;
+    d.ideal_stitches = sr.wales.ideal;
+    d.increases = sr.wales.increases;
+    d.decreases = sr.wales.decreases;
+    d.wedges = sr.wedges;
+    d.short_rows = sr.short_rows;
+    d.turns = sr.turns;
+  }
+  const TubeSpacing spacing = options.short_rows ? std::move(sr.spacing) : tube_spacing(surface, d.field, 256, 128);
+  d.bend_ratio = spacing.ratio;
+  d.course_spacing = measure_course_spacing(d.stitch_mesh, spacing, options.params.stitch_width,
+                                            options.params.stitch_height);
   d.seconds.tessellation = t.seconds();
 
   begin("knitting map");

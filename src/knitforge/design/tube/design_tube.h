@@ -8,7 +8,10 @@
 ///     other (tube_field.h); every level is one closed loop;
 ///  2. rounds: levels one stitch height apart on average (round_levels()),
 ///     extracted as closed isocurves, oriented and started at the seam
-///     (tube_rounds.h);
+///     (tube_rounds.h); with short rows (the default) on a bent tube: full
+///     rounds one stitch height apart on the inside of the bend and wedges
+///     of short rows where the outside lies further apart
+///     (tube_short_rows.h);
 ///  3. tessellation: each round sampled at its stitch count, wales traced
 ///     as column labels with increases and decreases where the count
 ///     changes (tessellate_rounds.h);
@@ -16,9 +19,8 @@
 ///     labels) and both knittability checks (the mesh check with closed
 ///     courses).
 ///
-/// Every round goes once round the whole tube: no short rows yet (a bent
-/// tube's rounds are closer on the inside of the bend than on the outside;
-/// see docs/tubes.md for what that leaves).
+/// A tube that needs no wedge (a straight tube), or short_rows = false,
+/// is knitted in plain rounds, each once round the whole tube.
 /// Deterministic.
 
 #include <functional>
@@ -32,6 +34,8 @@
 #include "knitforge/design/tube/tessellate_rounds.h"
 #include "knitforge/design/tube/tube_field.h"
 #include "knitforge/design/tube/tube_rounds.h"
+#include "knitforge/design/tube/tube_short_rows.h"
+#include "knitforge/design/tube/tube_spacing.h"
 #include "knitforge/geometry/tri_mesh.h"
 
 namespace knitforge {
@@ -42,6 +46,10 @@ struct TubeDesignOptions {
   /// Called at the start of every stage with its name (progress reports).
   std::function<void(const std::string&)> progress;
   std::string surface_name = "the surface";  ///< names the surface in messages
+  /// Short-row wedges where the rounds lie further apart than on the inside
+  /// of a bend (tube_short_rows.h); false: plain rounds, one stitch height
+  /// apart on average.
+  bool short_rows = true;
 };
 
 /// Wall-clock seconds per stage.
@@ -61,6 +69,9 @@ struct TubeDesign {
   KnittingMap map;         ///< tubular
   KnittabilityReport mesh_check, map_check;
   double surface_area = 0.0;  ///< mm^2
+  int wedges = 0, short_rows = 0, turns = 0;  ///< short-row wedges, their rows and turns
+  double bend_ratio = 1.0;  ///< TubeSpacing::ratio: outside over inside rim-to-rim distance
+  CourseSpacing course_spacing;  ///< stitch heights / sh along the inside and the outside line
   TubeTimings seconds;
 };
 

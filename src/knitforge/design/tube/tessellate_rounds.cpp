@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -78,12 +79,12 @@ std::vector<int> choose_increases(const std::vector<int>& live, int lo, int hi, 
 
 }  // namespace
 
-RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params) {
+RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params) {
   if (rounds.size() < 2) throw InvalidInput("tube tessellation: needs at least two rounds (the two rims)");
   if (!(params.stitch_width > 0.0) || !(params.stitch_height > 0.0))
     throw InvalidInput("tube tessellation: the stitch width and height must be positive");
   const int K = static_cast<int>(rounds.size()) - 1;  // rows of stitches
-  RoundsTessellation t;
+  RoundWales t;
   t.ideal.resize(rounds.size());
   int most = 0;
   for (size_t k = 0; k < rounds.size(); ++k) {
@@ -142,6 +143,27 @@ RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, cons
     live[static_cast<size_t>(k + 1)] = next;
   }
   if (K >= 2) live[static_cast<size_t>(K)] = live[static_cast<size_t>(K - 1)];
+  for (size_t k = 0; k < rounds.size(); ++k) t.stitches.push_back(static_cast<int>(live[k].size()));
+  for (size_t k = 0; k + 1 < rounds.size(); ++k) {
+    std::vector<int> gone, started;
+    std::set_difference(live[k].begin(), live[k].end(), live[k + 1].begin(), live[k + 1].end(),
+                        std::back_inserter(gone));
+    std::set_difference(live[k + 1].begin(), live[k + 1].end(), live[k].begin(), live[k].end(),
+                        std::back_inserter(started));
+    t.decreases += static_cast<int>(gone.size());
+    t.increases += static_cast<int>(started.size());
+  }
+  t.live = std::move(live);
+  return t;
+}
+
+RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params) {
+  RoundWales w = round_wales(rounds, params);
+  const int K = static_cast<int>(rounds.size()) - 1, H = w.columns / 2, N = w.columns;
+  const std::vector<std::vector<int>>& live = w.live;
+  RoundsTessellation t;
+  t.columns = N;
+  t.ideal = std::move(w.ideal);
 
   // Vertices: one per stitch of each round.
   std::vector<int> first(rounds.size() + 1, 0);

@@ -44,6 +44,21 @@
 
 namespace knitforge {
 
+/// The wales of the rounds (the first part of tessellate_rounds()): which
+/// map columns are live on each round.
+struct RoundWales {
+  int columns = 0;                       ///< N
+  std::vector<std::vector<int>> live;    ///< per round: its live columns, sorted (front half first)
+  std::vector<int> stitches;             ///< per round: live[k].size()
+  std::vector<int> ideal;                ///< per round: max(8, round(length / sw))
+  int increases = 0, decreases = 0;      ///< wales started / ended between rounds
+};
+
+/// The live wales of every round (see the file comment: counts, halves,
+/// where wales end and start).
+/// \throw InvalidInput for fewer than two rounds or an invalid stitch size.
+RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params);
+
 /// The tubular stitch mesh and its counts.
 struct RoundsTessellation {
   StitchMesh mesh;

@@ -1,6 +1,7 @@
 #include "knitforge/design/tube/tube_rounds.h"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -52,7 +53,7 @@ std::vector<Vec3> start_nearest(const std::vector<Vec3>& p, const Vec3& q) {
 }  // namespace
 
 std::vector<RoundCurve> tube_round_curves(const TriMesh& mesh, const TubeField& field,
-                                          const std::vector<double>& levels) {
+                                          const std::vector<double>& levels, const std::optional<Vec3>& start) {
   const size_t K = levels.size() - 1;
   std::vector<double> inner(levels.begin() + 1, levels.end() - 1);
   const auto curves = inner.empty() ? std::vector<std::vector<Isocurve>>{}
@@ -69,7 +70,7 @@ std::vector<RoundCurve> tube_round_curves(const TriMesh& mesh, const TubeField& 
     if (std::tie(p0[i].x(), p0[i].y(), p0[i].z()) < std::tie(p0[s0].x(), p0[s0].y(), p0[s0].z())) s0 = i;
   }
   std::rotate(p0.begin(), p0.begin() + static_cast<long>(s0), p0.end());
-  rounds[0].points = std::move(p0);
+  rounds[0].points = start ? start_nearest(p0, *start) : std::move(p0);
   for (size_t k = 1; k <= K; ++k) {
     std::vector<Vec3> p;
     if (k == K) {
@@ -108,6 +109,22 @@ std::vector<Vec3> sample_round(const RoundCurve& round, int count, int front) {
     out.push_back((1.0 - a) * p[seg] + a * p[(seg + 1) % n]);
   }
   return out;
+}
+
+Vec3 round_point_at(const RoundCurve& round, double f) {
+  const std::vector<Vec3>& p = round.points;
+  const size_t n = p.size();
+  if (n == 1) return p[0];
+  f -= std::floor(f);
+  double target = f * round.length, s = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& a = p[i];
+    const Vec3& b = p[(i + 1) % n];
+    const double len = (b - a).norm();
+    if (s + len >= target && len > 0.0) return a + std::clamp((target - s) / len, 0.0, 1.0) * (b - a);
+    s += len;
+  }
+  return p[0];
 }
 
 }  // namespace knitforge

@@ -17,6 +17,7 @@
 /// round at its point nearest to the start of the round before it, so the
 /// seam (and the left fold of the flattened tube) follows the tube.
 
+#include <optional>
 #include <vector>
 
 #include "knitforge/design/tube/tube_field.h"
@@ -33,10 +34,17 @@ struct RoundCurve {
 };
 
 /// The rounds at `levels` (levels.front() = 0 is the start loop,
-/// levels.back() = 1 the end loop).
+/// levels.back() = 1 the end loop). With `start`, round 0 starts at its
+/// point nearest to it instead of at its smallest x (the short-row route
+/// moves the seam to the inside of a bend, tube_short_rows.h).
 /// \throw InvalidInput when a level is not one closed loop (names it).
 std::vector<RoundCurve> tube_round_curves(const TriMesh& mesh, const TubeField& field,
-                                          const std::vector<double>& levels);
+                                          const std::vector<double>& levels,
+                                          const std::optional<Vec3>& start = std::nullopt);
+
+/// The point at arc length f * length from the round's start (f in [0, 1],
+/// taken modulo 1).
+Vec3 round_point_at(const RoundCurve& round, double f);
 
 /// `count` points on the closed round: `front` of them evenly spaced (by arc
 /// length) on the first half of the round, from its start, the others on the
