@@ -231,6 +231,23 @@ nlohmann::json newton_timings_json(const NewtonTimings& t) {
           {"line_search_s", t.line_search}};
 }
 
+nlohmann::json newton_history_json(const std::vector<NewtonIterate>& history) {
+  nlohmann::json j = {{"energy_uj", nlohmann::json::array()},      {"max_force_mn", nlohmann::json::array()},
+                      {"factorizations", nlohmann::json::array()}, {"shift", nlohmann::json::array()},
+                      {"step", nlohmann::json::array()},           {"energy_trials", nlohmann::json::array()},
+                      {"projected", nlohmann::json::array()}};
+  for (const NewtonIterate& h : history) {
+    j["energy_uj"].push_back(h.energy);
+    j["max_force_mn"].push_back(h.max_force_mn);
+    j["factorizations"].push_back(h.factorizations);
+    j["shift"].push_back(h.shift);
+    j["step"].push_back(h.step);
+    j["energy_trials"].push_back(h.energy_trials);
+    j["projected"].push_back(h.projected);
+  }
+  return j;
+}
+
 double unit_scale(const std::string& units) {
   if (units == "mm") return 1.0;
   if (units == "cm") return 10.0;

@@ -98,6 +98,11 @@ void check_surface_stitches(const TriMesh& surface, const std::string& descripti
 /// {"evaluate_s", "factor_s", "max_step_s", "line_search_s"}.
 nlohmann::json newton_timings_json(const NewtonTimings& t);
 
+/// Where a simulator solve's iterations went, as report JSON: one array per
+/// quantity, one entry per Newton iteration ({"energy_uj", "max_force_mn",
+/// "factorizations", "shift", "step", "energy_trials"}; see NewtonIterate).
+nlohmann::json newton_history_json(const std::vector<NewtonIterate>& history);
+
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.
 KnitParams parse_stitch_size(const std::string& text);

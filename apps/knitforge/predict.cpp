@@ -152,7 +152,8 @@ void add_predict_command(CLI::App& app, Action& action) {
                     {"contacts", r.solve.contacts},
                     {"min_distance_to_support_mm",
                      std::isfinite(r.solve.min_distance_mm) ? nlohmann::json(r.solve.min_distance_mm) : nullptr},
-                    {"seconds", newton_timings_json(r.solve.seconds)}};
+                    {"seconds", newton_timings_json(r.solve.seconds)},
+                    {"history", newton_history_json(r.solve.history)}};
       j["stress_kpa"] = scalar_stats_json(scalar_stats(r.stitch_stress_kpa));
       j["stress_measure"] = "largest principal Cauchy membrane stress per stitch / thickness (kPa, 0 if compressed)";
       j["course_strain"] = scalar_stats_json(scalar_stats(r.stitch_course_strain));

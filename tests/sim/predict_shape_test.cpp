@@ -106,3 +106,79 @@ TEST(PredictShape, SheetSettlesOnADomeAndConverges) {
 
 }  // namespace
 }  // namespace knitforge
+
+namespace knitforge {
+namespace {
+
+// A 12 x 10 sheet designed 20 % small in both directions and rolled onto a
+// cylinder of radius 12 mm (courses round it): every stitch is compressed
+// and bent, so the exact Hessian of the start is indefinite. The free
+// equilibrium is the flat sheet at the stitch size (energy 0, unique up to
+// rigid motion). The projected start (Clamp steps until the exact Hessian
+// first factors, EquilibriumOptions::start_projection) reaches the same
+// equilibrium as Levenberg-Marquardt shifts from the start, in fewer
+// iterations (24 / 35 factorisations against 55 / 84 when measured), and
+// reruns bit-identically.
+StitchMesh rolled_small_sheet() {
+  const int cols = 12, rows = 10;
+  StitchMesh sheet = test::knit_sheet(cols, rows, 0.8 * 3.5, 0.8 * 2.8);
+  const double radius = 12.0;
+  for (Vec3& p : sheet.vertices) {
+    const double a = p.x() / radius;
+    p = Vec3(radius * std::sin(a), p.y(), radius * (1.0 - std::cos(a)));
+  }
+  return sheet;
+}
+
+PredictResult predict_rolled(PsdProjection start) {
+  PredictOptions o;
+  o.equilibrium.start_projection = start;
+  return predict_shape(rolled_small_sheet(), stitch(3.5, 2.8), nullptr, o);
+}
+
+TEST(PredictShape, ProjectedStartReachesTheSameEquilibriumInFewerIterations) {
+  const PredictResult shifted = predict_rolled(PsdProjection::None);
+  const PredictResult projected = predict_rolled(PsdProjection::Clamp);
+  ASSERT_TRUE(shifted.solve.converged) << shifted.solve.stop_reason;
+  ASSERT_TRUE(projected.solve.converged) << projected.solve.stop_reason;
+  EXPECT_LE(projected.solve.max_force_mn, 1e-5);
+  // The start is indefinite: the first step is the projected Hessian's;
+  // without the projected start, no step is.
+  ASSERT_FALSE(projected.solve.history.empty());
+  EXPECT_TRUE(projected.solve.history.front().projected);
+  for (const NewtonIterate& h : shifted.solve.history) EXPECT_FALSE(h.projected);
+  // Once the exact Hessian has factored, no projected step follows.
+  bool exact_seen = false;
+  for (const NewtonIterate& h : projected.solve.history) {
+    if (exact_seen) {
+      EXPECT_FALSE(h.projected);
+    }
+    exact_seen = exact_seen || !h.projected;
+  }
+  EXPECT_EQ(static_cast<int>(projected.solve.history.size()), projected.solve.iterations);
+  // The same equilibrium: flat at the stitch size, energy ~0, the same
+  // edge lengths (the two differ by a rigid motion at most).
+  EXPECT_LT(projected.solve.energy, 1e-6);
+  EXPECT_LT(shifted.solve.energy, 1e-6);
+  const StitchMesh& a = projected.predicted;
+  const StitchMesh& b = shifted.predicted;
+  for (const Stitch& st : a.stitches) {
+    for (int k = 0; k < st.corners(); ++k) {
+      const int i = st.v[k], j = st.v[(k + 1) % st.corners()];
+      EXPECT_NEAR((a.vertices[i] - a.vertices[j]).norm(), (b.vertices[i] - b.vertices[j]).norm(), 1e-5);
+    }
+  }
+  EXPECT_LT(projected.solve.iterations, shifted.solve.iterations)
+      << projected.solve.factorizations << " vs " << shifted.solve.factorizations << " factorisations";
+  EXPECT_LT(projected.solve.factorizations, shifted.solve.factorizations);
+}
+
+TEST(PredictShape, ProjectedStartIsDeterministic) {
+  const PredictResult a = predict_rolled(PsdProjection::Clamp);
+  const PredictResult b = predict_rolled(PsdProjection::Clamp);
+  ASSERT_EQ(a.solve.iterations, b.solve.iterations);
+  for (size_t v = 0; v < a.predicted.vertices.size(); ++v) EXPECT_EQ(a.predicted.vertices[v], b.predicted.vertices[v]);
+}
+
+}  // namespace
+}  // namespace knitforge

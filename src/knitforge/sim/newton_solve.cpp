@@ -55,7 +55,8 @@ double apply_fixed(const HessianPattern& pattern, const std::vector<char>& fixed
 }  // namespace
 
 NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fixed, const EvaluateEnergy& evaluate,
-                          const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver) {
+                          const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver,
+                          const EvaluateEnergy& projected) {
   if (!fixed.empty() && static_cast<Eigen::Index>(fixed.size()) != x0.size()) {
     throw InvalidInput(fmt::format("Newton: {} fixed flags for {} unknowns", fixed.size(), x0.size()));
   }
@@ -71,6 +72,8 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
   NewtonResult res;
   res.x = x0;
   double mu = 0.0;
+  // The projected start: until the exact Hessian first factors.
+  bool projected_start = static_cast<bool>(projected);
   constexpr double kMuMin = 1e-8, kMuMax = 1e6;
   for (int it = 0;; ++it) {
     Timer t;
@@ -96,7 +99,10 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
       res.stop_reason = "iteration limit";
       break;
     }
-    const double scale = apply_fixed(*ev.pattern, fixed, ev.hessian_values);
+    double scale = apply_fixed(*ev.pattern, fixed, ev.hessian_values);
+    NewtonIterate rec;
+    rec.energy = ev.value;
+    rec.max_force_mn = res.max_force_mn;
     bool stepped = false;
     while (!stepped) {
       // Factor H + mu s I, raising mu until it factors.
@@ -109,11 +115,24 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
             if (fixed.empty() || !fixed[c]) vals[ev.pattern->diagonal_index(c)] += mu * scale;
         }
         ++res.factorizations;
+        ++rec.factorizations;
         try {
           solver.refactor(ev.pattern->matrix(vals));
           p = solver.solve(-g);
+          if (!rec.projected) projected_start = false;
           break;
         } catch (const SolverError&) {
+          if (projected_start && !rec.projected) {
+            // The exact Hessian is indefinite: take the projected one's step.
+            Timer te;
+            EnergyEval pe = projected(res.x, Derivatives::Hessian);
+            res.seconds.evaluate += te.seconds();
+            ev.hessian_values = std::move(pe.hessian_values);
+            scale = apply_fixed(*ev.pattern, fixed, ev.hessian_values);
+            rec.projected = true;
+            mu = 0.0;
+            continue;
+          }
           mu = mu == 0.0 ? kMuMin : mu * 10.0;
           if (mu > kMuMax) break;
         }
@@ -144,6 +163,7 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
       for (int ls = 0; ls < options.max_line_search_steps && alpha > 0; ++ls) {
         trial = res.x + alpha * p;
         e_trial = evaluate(trial, Derivatives::Value).value;
+        ++rec.energy_trials;
         if (std::isfinite(e_trial) && e_trial <= ev.value + options.armijo * alpha * slope) {
           accepted = true;
           break;
@@ -163,6 +183,7 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
         for (double a = 2.0; a <= alpha_cap; a *= 2.0) {
           Eigen::VectorXd bigger = res.x + a * p;
           const double e = evaluate(bigger, Derivatives::Value).value;
+          ++rec.energy_trials;
           if (!(std::isfinite(e) && e < e_trial - 1e-12 * std::abs(e_trial))) break;
           trial = std::move(bigger);
           e_trial = e;
@@ -185,6 +206,9 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
       res.x = std::move(trial);
       ++res.iterations;
       stepped = true;
+      rec.shift = mu;
+      rec.step = alpha;
+      res.history.push_back(rec);
       if (alpha >= 0.5 * alpha_max && alpha_max == 1.0) {
         mu = mu <= kMuMin ? 0.0 : mu * 0.1;
       } else if (alpha < 0.1 * alpha_max) {

@@ -63,6 +63,17 @@ struct NewtonTimings {
   double line_search = 0.0;  ///< energy evaluations of the line search
 };
 
+/// One Newton iteration, for saying where the iterations go.
+struct NewtonIterate {
+  double energy = 0.0;        ///< before the step (µJ)
+  double max_force_mn = 0.0;  ///< before the step (mN)
+  int factorizations = 0;     ///< attempted in this iteration (failed ones included)
+  double shift = 0.0;         ///< μ of the factor whose step was taken (0: unshifted)
+  double step = 0.0;          ///< α of the accepted step (1 = the full step; > 1 grown)
+  int energy_trials = 0;      ///< energy values of the line search and step growth
+  bool projected = false;     ///< the step is the projected Hessian's (the exact one did not factor)
+};
+
 struct NewtonResult {
   Eigen::VectorXd x;
   bool converged = false;
@@ -73,6 +84,8 @@ struct NewtonResult {
   double max_force_mn = 0.0; ///< largest free vertex force at x (mN)
   /// Energy before each iteration and at the end.
   std::vector<double> energies;
+  /// One record per iteration taken (iterations entries).
+  std::vector<NewtonIterate> history;
   /// "converged", "iteration limit", "no descent (round-off)", "factorisation failed".
   std::string stop_reason;
   NewtonTimings seconds;
@@ -88,11 +101,23 @@ using MaxStep = std::function<double(const Eigen::VectorXd& x0, const Eigen::Vec
 /// Minimises the energy from x0. `fixed` is empty or one flag per unknown
 /// (3n). `solver` keeps the factorisation between calls (pass the same one
 /// for every solve with one model, so the symbolic analysis can be reused).
+/// `projected` (optional) evaluates the same energy with a positive
+/// semi-definite Hessian (element Hessians projected, e.g. Clamp): the
+/// **projected start**. While the exact Hessian (evaluate's) has not yet
+/// factored in this solve, an iteration whose exact Hessian does not factor
+/// takes the projected Hessian's step (shifted only if that one does not
+/// factor either) instead of raising the Levenberg-Marquardt shift; from the
+/// first iteration whose exact (possibly shifted) Hessian factors on, it is
+/// Newton with LM shifts as without `projected`. Far from equilibrium the
+/// exact Hessian of buckling fabric is indefinite and the shifted steps are
+/// short; near it the projected model is poor (docs/sim.md, "Solver").
+/// Convergence is judged on the exact gradient either way.
 /// \throw InvalidInput for mismatched sizes, a non-finite x0 or an
 ///        inadmissible (infinite-energy) x0; SolverError when the energy
 ///        becomes non-finite in a way no step size avoids.
 NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fixed, const EvaluateEnergy& evaluate,
-                          const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver);
+                          const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver,
+                          const EvaluateEnergy& projected = {});
 
 /// The largest vertex force max_i |g_i| over vertices whose three unknowns
 /// are not all fixed (mN).

@@ -17,6 +17,9 @@
 namespace knitforge {
 
 SimWorkspace::SimWorkspace(const SimModel& model) : model_(&model), pattern_(build_hessian_pattern(model)) {
+  // One symbolic analysis for every Hessian of the model: a failed
+  // (indefinite) factorisation no longer makes the next one analyse again.
+  if (pattern_->nonzeros() > 0) solver_.analyze(pattern_->matrix(std::vector<double>(pattern_->nonzeros(), 0.0)));
   const int n = model.num_vertices();
   fixed_.assign(3 * static_cast<size_t>(n), 0);
   pinned_.assign(n, 0);
@@ -254,22 +257,27 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
       const std::vector<ContactPair> c = find_contact_candidates(*support, x, dhat, ws.pinned_vertices());
       friction = build_friction_pairs(model, c, *support, *support, x, fp);
     }
-    const EvaluateEnergy evaluate = [&](const Eigen::VectorXd& y, Derivatives what) {
-      EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
-      add_membrane_energy(model, y, o.projection, ev);
-      add_bending_energy(model, y, ev, o.projection);
-      if (o.gravity_mm_s2.norm() > 0) add_gravity_energy(model, y, o.gravity_mm_s2, ev);
-      if (has_body) {
-        const std::vector<ContactPair> pairs = find_contact_candidates(*support, y, dhat, ws.pinned_vertices());
-        add_contact_energy(model, pairs, *support, y, o.contact, ev);
-        if (std::isfinite(ev.value)) add_friction_energy(friction, y, x0, 1.0, fp, ev);
-      }
-      return ev;
+    // The energy with the element Hessians projected by `projection`.
+    auto energy = [&](PsdProjection projection) {
+      return [&, projection](const Eigen::VectorXd& y, Derivatives what) {
+        EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
+        add_membrane_energy(model, y, projection, ev);
+        add_bending_energy(model, y, ev, projection);
+        if (o.gravity_mm_s2.norm() > 0) add_gravity_energy(model, y, o.gravity_mm_s2, ev);
+        if (has_body) {
+          const std::vector<ContactPair> pairs = find_contact_candidates(*support, y, dhat, ws.pinned_vertices());
+          add_contact_energy(model, pairs, *support, y, o.contact, ev);
+          if (std::isfinite(ev.value)) add_friction_energy(friction, y, x0, 1.0, fp, ev);
+        }
+        return ev;
+      };
     };
     const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return has_body ? collision_free_step(*support, a, b, ws.pinned_vertices()) : 1.0;
     };
-    const NewtonResult r = newton_solve(x, fixed, evaluate, max_step, o.newton, ws.solver());
+    const bool projected_start = o.projection == PsdProjection::None && o.start_projection != PsdProjection::None;
+    const NewtonResult r = newton_solve(x, fixed, energy(o.projection), max_step, o.newton, ws.solver(),
+                                        projected_start ? EvaluateEnergy(energy(o.start_projection)) : EvaluateEnergy{});
     x = r.x;
     out.converged = r.converged;  // the last round decides
     out.iterations += r.iterations;
@@ -277,6 +285,7 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
     out.max_force_mn = r.max_force_mn;
     out.stop_reason = r.stop_reason;
     accumulate(out.seconds, r.seconds);
+    out.history.insert(out.history.end(), r.history.begin(), r.history.end());
   }
   out.positions_mm = x;
   out.energy = elastic_energy(model, x);
