@@ -96,15 +96,12 @@ inline int count_boundary_apexes(const StitchMesh& mesh) {
   return n;
 }
 
-// A round of 12 with a short-row wedge on the back half (a small heel):
-// rounds 0-1, short rows 2-5 on columns 8..11 turning two in and back out,
-// rounds 6-7. The first short row turns back at the seam where round 1
-// ended; the last one ends there and round 6 goes on.
-inline KnittingMap heel_tube() {
+// Eight rows of a tube of 12 columns: rounds 0-1 (seam `seam_before`),
+// short rows 2-5 on columns lo[r]..hi[r], rounds 6-7 (seam `seam_after`).
+inline KnittingMap tube_with_short_rows(int seam_before, int seam_after, const int (&lo)[8], const int (&hi)[8]) {
   KnittingMap m(8, 12, CellType::Knit);
   m.direction = {1, 1, -1, 1, -1, 1, 1, 1};
-  m.seam = {0, 0, -1, -1, -1, -1, 0, 0};
-  const int lo[] = {0, 0, 8, 8, 9, 9, 0, 0}, hi[] = {11, 11, 11, 10, 10, 11, 11, 11};
+  m.seam = {seam_before, seam_before, -1, -1, -1, -1, seam_after, seam_after};
   for (int r = 2; r <= 5; ++r) {
     for (int c = 0; c < 12; ++c)
       if (c < lo[r] || c > hi[r]) m.at(r, c) = CellType::Collapsed;
@@ -112,6 +109,14 @@ inline KnittingMap heel_tube() {
     m.at(r, hi[r]) = CellType::ShortRowRight;
   }
   return m;
+}
+
+// A round of 12 with a short-row wedge on the back half (a small heel):
+// rounds 0-1, short rows 2-5 on columns 8..11 turning two in and back out,
+// rounds 6-7. The first short row turns back at the seam where round 1
+// ended; the last one ends there and round 6 goes on.
+inline KnittingMap heel_tube() {
+  return tube_with_short_rows(0, 0, {0, 0, 8, 8, 9, 9, 0, 0}, {11, 11, 11, 10, 10, 11, 11, 11});
 }
 
 }  // namespace knitforge::test

@@ -53,6 +53,17 @@ class Cli : public ::testing::Test {
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
+  // knitout MAP_CSV --machine M -o PROGRAM, then simulate PROGRAM --against
+  // MAP_CSV: the program is written and the virtual machine says it knits
+  // exactly the map.
+  void expect_knitted_as_designed(const std::string& map_csv, const std::string& program, const std::string& machine) {
+    CliRun r = run("knitout " + map_csv + " --machine " + machine + " -o " + program);
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = run("simulate " + program + " --machine " + machine + " --against " + map_csv);
+    EXPECT_EQ(r.code, 0) << r.err << r.out;
+    EXPECT_NE((r.out + r.err).find("MATCHES the map"), std::string::npos) << r.err << r.out;
+  }
+
   fs::path dir_;
 };
 

@@ -16,12 +16,7 @@ TEST_F(Cli, ShortrowTubeDesignsTheSleeveKnitsAndSimulatesIt) {
   EXPECT_NE(report.find("\"route\": \"tube\""), std::string::npos);
   EXPECT_NE(report.find("\"rounds_off_ideal_by_more_than_1\": 0"), std::string::npos) << report;
 
-  const std::string k = path("sleeve.k");
-  r = run("knitout " + out + "/knitting_map.csv --machine kniterate -o " + k);
-  ASSERT_EQ(r.code, 0) << r.err;
-  r = run("simulate " + k + " --machine kniterate --against " + out + "/knitting_map.csv");
-  EXPECT_EQ(r.code, 0) << r.err << r.out;
-  EXPECT_NE((r.out + r.err).find("MATCHES the map"), std::string::npos) << r.err << r.out;
+  expect_knitted_as_designed(out + "/knitting_map.csv", path("sleeve.k"), "kniterate");
 }
 
 TEST_F(Cli, ShortrowTubeKnitsTheSleevesBendWithShortRowsOnBothMachines) {
@@ -34,12 +29,7 @@ TEST_F(Cli, ShortrowTubeKnitsTheSleevesBendWithShortRowsOnBothMachines) {
   EXPECT_NE(csv.find(",L"), std::string::npos) << "no short-row end";
   const std::string report = slurp(fs::path(out) / "report.json");
   EXPECT_EQ(report.find("\"short_rows\": 0,"), std::string::npos) << report;
-  const std::string k = path("sleeve_sr.k");
-  r = run("knitout " + out + "/knitting_map.csv --machine kniterate -o " + k);
-  ASSERT_EQ(r.code, 0) << r.err;
-  r = run("simulate " + k + " --machine kniterate --against " + out + "/knitting_map.csv");
-  EXPECT_EQ(r.code, 0) << r.err << r.out;
-  EXPECT_NE((r.out + r.err).find("MATCHES the map"), std::string::npos) << r.err << r.out;
+  expect_knitted_as_designed(out + "/knitting_map.csv", path("sleeve_sr.k"), "kniterate");
 
   const std::string plain = path("sleeve_plain");
   r = run("shortrow sleeve --tube --edge 5 --no-tube-short-rows --no-report -o " + plain);

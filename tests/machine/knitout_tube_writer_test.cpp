@@ -218,16 +218,8 @@ TEST(TubeWriter, ShortRowsOnPartOfTheRoundTurnWithClosureTucks) {
 TEST(TubeWriter, AWedgeAcrossTheRightFoldMovesTheSeam) {
   // As the tube route's elbow wedges: rounds of 12 from seam 8, short rows on columns 4..8
   // across the right fold (line 6), the last one ending at column 8, the next rounds from seam 9.
-  KnittingMap map(8, 12, CellType::Knit);
-  map.direction = {1, 1, -1, 1, -1, 1, 1, 1};
-  map.seam = {8, 8, -1, -1, -1, -1, 9, 9};
-  const int lo[] = {0, 0, 4, 4, 5, 5, 0, 0}, hi[] = {11, 11, 7, 6, 6, 8, 11, 11};
-  for (int r = 2; r <= 5; ++r) {
-    for (int c = 0; c < 12; ++c)
-      if (c < lo[r] || c > hi[r]) map.at(r, c) = CellType::Collapsed;
-    map.at(r, lo[r]) = CellType::ShortRowLeft;
-    map.at(r, hi[r]) = CellType::ShortRowRight;
-  }
+  const KnittingMap map =
+      test::tube_with_short_rows(8, 9, {0, 0, 4, 4, 5, 5, 0, 0}, {11, 11, 7, 6, 6, 8, 11, 11});
   const KnittabilityReport rep = check_knittability(map);
   ASSERT_TRUE(rep.ok()) << rep.text();
   for (const char* name : {"shima-swg091n2", "kniterate"}) {
