@@ -19,6 +19,11 @@ using writer_detail::Emitter;
 
 KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& prof, const KnitoutOptions& opt,
                                   const TubeWriterSetup& setup) {
+  if (map.closed_end)
+    throw InvalidInput(
+        "tube knitout: this tube is closed at its end (a crown: its last round is joined across the beds), which "
+        "the knitout writer cannot knit yet; use --no-knitout, or open the map's end (drop ':close' from the top "
+        "line's seam) to bind it off as an open tube");
   TubeLayoutOptions lo;
   lo.max_racking = prof.max_racking;
   lo.max_stack = std::max(2, prof.max_transfer_stack);
