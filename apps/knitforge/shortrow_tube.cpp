@@ -124,13 +124,7 @@ int run_tube_design(const TubeCommandOptions& o) {
                             {"rim_to_crown_mm", d.rim_to_crown},
                             {"crown_cap_radius_mm", d.crown_radius},
                             {"crown_cap_area_mm2", d.crown_area}};
-  // The knitout writer does not knit a closed end yet (knitout_tube_writer.h).
-  DesignMachineOptions mach = o.mach;
-  if (closed_end && !mach.no_knitout) {
-    note("closed tube: no knitout.k yet (the writer cannot knit the closing seam); the map and the stitch mesh are "
-         "written");
-    mach.no_knitout = true;
-  }
+  const DesignMachineOptions& mach = o.mach;
   Timer tm;
   bool machine_ok = true;
   nlohmann::json machine_check;

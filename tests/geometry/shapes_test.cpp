@@ -336,6 +336,56 @@ TEST(Shapes, BeanieIsADomeOnABandClosedAtTheTop) {
   EXPECT_THROW(beanie(b, 0.0), InvalidInput);
 }
 
+// The sock: one boundary loop (the rim, a circle of the radius at the top
+// of the leg), every vertex on the swept tube or the toe's hemisphere, the
+// outward normals, the Pappus area, mirror-symmetric about y = 0.
+TEST(Shapes, SockIsABentTubeClosedAtTheToe) {
+  const SockShape s;
+  const double edge = 4.0, r = s.radius, Rb = s.heel_radius, Lf = s.foot_length;
+  const TriMesh m = sock(s, edge);
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.issues.empty()) << rep.summary();
+  EXPECT_EQ(rep.num_boundary_loops, 1);
+  EXPECT_EQ(rep.genus, 0);
+  EXPECT_EQ(rep.num_components, 1);
+  // The nearest point of the axis.
+  auto axis_point = [&](const Vec3& p) {
+    if (p.x() >= Lf) return Vec3(Lf, 0.0, 0.0);
+    if (p.x() >= 0.0) return Vec3(p.x(), 0.0, 0.0);
+    if (p.z() >= Rb) return Vec3(-Rb, 0.0, p.z());
+    const Vec3 q(p.x(), 0.0, p.z() - Rb);
+    return Vec3(Vec3(0.0, 0.0, Rb) + Rb * q.normalized());
+  };
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  double rim = 0.0, lo_x = 0.0, hi_x = 0.0, lo_z = 0.0;
+  for (const auto& loop : he.boundary_loops())
+    for (size_t i = 0; i < loop.size(); ++i) rim += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    lo_x = std::min(lo_x, p.x());
+    hi_x = std::max(hi_x, p.x());
+    lo_z = std::min(lo_z, p.z());
+    EXPECT_NEAR((p - axis_point(p)).norm(), r, 1e-9 * r) << v;
+    if (he.is_boundary_vertex(v)) {
+      EXPECT_NEAR(p.z(), Rb + s.leg_length, 1e-9) << v;
+    }
+    EXPECT_TRUE(has_vertex(m, Vec3(p.x(), -p.y(), p.z()))) << v;
+  }
+  EXPECT_NEAR(hi_x - lo_x, Lf + 2 * r + Rb, 1e-6);  // heel to toe: 256 mm
+  EXPECT_NEAR(Rb + s.leg_length - lo_z, Rb + s.leg_length + r, 0.01 * r);  // sole to rim
+  EXPECT_NEAR(rim, 2 * kPi * r, 0.01 * 2 * kPi * r);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    EXPECT_GT(face_normal(m, f).dot(c - axis_point(c)), 0.0) << f;
+  }
+  const double area = 2 * kPi * r * r + 2 * kPi * r * (Lf + 0.5 * kPi * Rb + s.leg_length);
+  EXPECT_NEAR(total_area(m), area, 0.01 * area);
+  EXPECT_THROW(sock(SockShape{80.0, 110.0, 70.0, 120.0}, edge), InvalidInput);  // radius above the heel's
+  EXPECT_THROW(sock(SockShape{38.0, 0.0, 70.0, 120.0}, edge), InvalidInput);
+  EXPECT_THROW(sock(s, 0.0), InvalidInput);
+}
+
 // The cap: on the sphere, both rims on their exact circles (the face opening
 // within 35 degrees of -y, the neck within 40 degrees of -z), two loops,
 // area 2 pi r^2 (cos 35 + cos 40).
@@ -416,7 +466,7 @@ TEST(Shapes, SleeveIsATaperedBentTubeWithOutwardNormals) {
 
 TEST(Shapes, MakeShapeByNameIsDeterministic) {
   const auto names = shape_names();
-  ASSERT_EQ(names.size(), 10u);
+  ASSERT_EQ(names.size(), 11u);
   for (const auto& name : names) {
     const TriMesh a = make_shape(name, 8.0);
     const TriMesh b = make_shape(name, 8.0);

@@ -409,6 +409,50 @@ TriMesh beanie(const BeanieShape& shape, double edge_length) {
   return beanie_rings(shape, edge_length);
 }
 
+TriMesh sock(const SockShape& s, double edge_length) {
+  check_size("sock", "radius", s.radius);
+  check_size("sock", "foot length", s.foot_length);
+  check_size("sock", "heel radius", s.heel_radius);
+  check_size("sock", "leg length", s.leg_length);
+  if (!(s.radius < s.heel_radius))
+    throw InvalidInput(fmt::format("sock: the radius ({} mm) must be below the heel radius ({} mm)", s.radius,
+                                   s.heel_radius));
+  const double r = s.radius, bend = 0.5 * kPi * s.heel_radius;
+  const double cap = 0.5 * kPi * r, total = cap + s.foot_length + bend + s.leg_length;
+  check_edge("sock", edge_length, std::min(r, s.foot_length),
+             2.0 * kPi * r * r + 2.0 * kPi * r * (s.foot_length + bend + s.leg_length));
+  // The straight sock: the toe's quarter circle from the tip (z = r), then
+  // the tube down to z = -(axis length); a = -z is the distance along the
+  // axis from the toe cap's centre.
+  const int rings = std::max(3, static_cast<int>(std::lround(total / (0.5 * std::sqrt(3.0) * edge_length))));
+  TriMesh m = revolution_rings(rings, edge_length, [&](int k) {
+    const double t = total * k / rings;
+    if (k == rings) return std::pair<double, double>(r, cap - total);
+    if (t < cap) return std::pair<double, double>(r * std::sin(t / r), r * std::cos(t / r));
+    return std::pair<double, double>(r, cap - t);
+  });
+  // Swept along the bent axis: the section's y toward the bend's centre
+  // (n1, in the plane y = 0), its x along +y.
+  const double Rb = s.heel_radius, Lf = s.foot_length;
+  for (Vec3& p : m.vertices) {
+    const double a = -p.z();
+    Vec3 c, n1;
+    if (a <= Lf) {
+      c = Vec3(Lf - a, 0.0, 0.0);
+      n1 = Vec3(0.0, 0.0, 1.0);
+    } else if (a <= Lf + bend) {
+      const double phi = (a - Lf) / Rb;
+      c = Vec3(-Rb * std::sin(phi), 0.0, Rb * (1.0 - std::cos(phi)));
+      n1 = Vec3(std::sin(phi), 0.0, std::cos(phi));
+    } else {
+      c = Vec3(-Rb, 0.0, Rb + (a - Lf - bend));
+      n1 = Vec3(1.0, 0.0, 0.0);
+    }
+    p = c + p.y() * n1 + p.x() * Vec3(0.0, 1.0, 0.0);
+  }
+  return m;
+}
+
 TriMesh triple_peak(double edge_length) {
   check_edge("triple-peak", edge_length, 100.0, 150.0 * 100.0 * 1.5);
   return height_field_rectangle(-75.0, 75.0, -50.0, 50.0, edge_length, 10, triple_peak_height);
@@ -584,7 +628,7 @@ TriMesh cap(const CapShape& c, double edge_length) {
 }
 
 std::vector<std::string> shape_names() {
-  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube", "sleeve", "beanie"};
+  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube", "sleeve", "beanie", "sock"};
 }
 
 TriMesh make_shape(std::string_view name, double edge_length) {
@@ -598,6 +642,7 @@ TriMesh make_shape(std::string_view name, double edge_length) {
   if (name == "tube") return open_tube(40.0, 100.0, edge_length);
   if (name == "sleeve") return sleeve(SleeveShape{}, edge_length);
   if (name == "beanie") return beanie(BeanieShape{}, edge_length);
+  if (name == "sock") return sock(SockShape{}, edge_length);
   std::string names;
   for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
   throw InvalidInput(fmt::format("unknown shape '{}'; the built-in shapes are: {}", name, names));

@@ -104,5 +104,37 @@ TEST(BeanieTube, ClosingRuleAndRefusals) {
   EXPECT_THROW(design_tube(hemisphere(40.0, 2.5), o), InvalidInput);
 }
 
+// The sock: a closed tube that bends (the heel), so it gets short-row
+// wedges as an open bent tube does, and still closes at the toe with equal
+// halves; the map round-trips.
+TEST(SockTube, HeelWedgesAndAClosedToe) {
+  TubeDesignOptions o;
+  o.params = {7.0, 5.6};
+  const TubeDesign d = design_tube(sock(SockShape{}, 6.0), o);
+  EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
+  EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
+  ASSERT_TRUE(d.map.tubular());
+  EXPECT_TRUE(d.map.closed_end);
+  EXPECT_GT(d.wedges, 5);  // the heel bends by (70 + 38) / (70 - 38)
+  EXPECT_GT(d.short_rows, 2 * d.wedges - 1);
+  int open_rows = 0;
+  for (int r = 0; r < d.map.rows; ++r) open_rows += d.map.closed(r) ? 0 : 1;
+  EXPECT_EQ(open_rows, d.short_rows);
+  const int last = d.map.rows - 1, h = d.map.tube_half();
+  EXPECT_TRUE(d.map.closed(last));
+  EXPECT_EQ(row_stitches(d.map, last, 0, h), row_stitches(d.map, last, h, d.map.cols));
+  EXPECT_FALSE(closing_pairs(d.map).empty());
+  // 239 mm round at sw 7: 34 stitches in the leg
+  EXPECT_NEAR(row_stitches(d.map, 0, 0, d.map.cols), 34, 1);
+  EXPECT_TRUE(stitch_mesh_to_map(map_to_stitch_mesh_topology(d.map, o.params)) == d.map);
+  EXPECT_TRUE(knitting_map_from_csv(knitting_map_to_csv(d.map), "sock.csv") == d.map);
+  // Without short rows the same sock is knitted in plain rounds.
+  o.short_rows = false;
+  const TubeDesign plain = design_tube(sock(SockShape{}, 6.0), o);
+  EXPECT_EQ(plain.wedges, 0);
+  EXPECT_TRUE(plain.map.closed_end);
+  EXPECT_TRUE(plain.map_check.ok()) << plain.map_check.text();
+}
+
 }  // namespace
 }  // namespace knitforge

@@ -1,5 +1,7 @@
 #include "knitforge/design/tube/design_tube.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "knitforge/convert/map_knittability.h"
@@ -39,9 +41,10 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   begin("rounds");
   t.reset();
   TubeShortRows sr;
-  if (options.short_rows && !closed_end) {
+  if (options.short_rows) {
     TubeShortRowOptions so;
     so.params = options.params;
+    so.equal_halves = closed_end;
     sr = tube_short_rows(surface, d.field, so);
   }
   const bool wedges = sr.wedges > 0;
@@ -60,11 +63,6 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   if (!wedges) {
     RoundsTessellation tess = tessellate_rounds(d.rounds, options.params, closed_end);
     d.stitch_mesh = std::move(tess.mesh);
-    if (closed_end) {
-      const int last = static_cast<int>(d.rounds.size()) - 2;
-      for (Stitch& st : d.stitch_mesh.stitches)
-        if (st.course == last) st.roles |= kRoleClosingSeam;
-    }
     d.round_stitches = std::move(tess.stitches);
     d.ideal_stitches = std::move(tess.ideal);
     d.increases = tess.increases;
@@ -79,7 +77,14 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
     d.short_rows = sr.short_rows;
     d.turns = sr.turns;
   }
-  const TubeSpacing spacing = options.short_rows && !closed_end ? std::move(sr.spacing) : tube_spacing(surface, d.field, 256, 128);
+  if (closed_end) {
+    // the last round: joined across the beds by the closing seam
+    int last = 0;
+    for (const Stitch& st : d.stitch_mesh.stitches) last = std::max(last, st.course);
+    for (Stitch& st : d.stitch_mesh.stitches)
+      if (st.course == last) st.roles |= kRoleClosingSeam;
+  }
+  const TubeSpacing spacing = options.short_rows ? std::move(sr.spacing) : tube_spacing(surface, d.field, 256, 128);
   d.bend_ratio = spacing.ratio;
   d.course_spacing = measure_course_spacing(d.stitch_mesh, spacing, options.params.stitch_width,
                                             options.params.stitch_height);

@@ -23,9 +23,10 @@
 /// is knitted in plain rounds, each once round the whole tube.
 ///
 /// A surface with one boundary loop (a disk: a beanie) is a closed tube:
-/// its crown cap is cut off (tube_crown.h), the annulus left is knitted in
-/// plain rounds (no short-row wedges) from the rim to the crown ring, with
-/// the halves of every round kept equal from the first decrease on, and the
+/// its crown cap is cut off (tube_crown.h), the annulus left is knitted
+/// from the rim to the crown ring as an open tube is (with wedges where it
+/// bends: a sock's heel), with the halves of every round kept equal from
+/// the first decrease on, and the
 /// last round is joined across the beds and bound off (the map's
 /// closed_end; docs/tubes.md, "Closed tubes").
 /// Deterministic.

@@ -54,7 +54,7 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
   out.levels.back() = 1.0;
   for (int k = 1; k < K; ++k) out.levels[static_cast<size_t>(k)] = sp.level_of_inside(total * k / K);
   out.rounds = tube_round_curves(mesh, field, out.levels, start);
-  out.wales = round_wales(out.rounds, o.params);
+  out.wales = round_wales(out.rounds, o.params, o.equal_halves);
   const int N = out.wales.columns, H = N / 2;
   const auto& live = out.wales.live;
 

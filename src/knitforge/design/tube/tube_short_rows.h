@@ -46,6 +46,9 @@ struct TubeShortRowOptions {
   KnitParams params;
   int table_levels = 256;  ///< rounds of the spacing table
   int table_fractions = 128;  ///< places round each table round
+  /// A closed tube (tube_crown.h): the halves of the full rounds kept equal
+  /// (round_wales() with equal_halves), so that the closing seam can pair them.
+  bool equal_halves = false;
 };
 
 /// A tube with short-row wedges.
