@@ -221,20 +221,59 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
                                      "different numbers of stitches; no closing seam can pair them",
                                      last));
     std::map<int, std::vector<std::pair<int, int>>> by_racking;  // racking -> {back needle, front needle}
+    std::vector<std::pair<int, int>> far;  // pairs further apart than the machine racks
+    const int R = prof.max_racking;
     for (const auto& [f, b] : pairs) {
       const int nf = N(last, f), nb = N(last, b);
-      if (std::abs(nf - nb) > prof.max_racking)
+      if (std::abs(nf - nb) <= R) {
+        by_racking[nf - nb].emplace_back(nb, nf);
+      } else if (R >= 2) {
+        far.emplace_back(nb, nf);
+      } else {
         throw InvalidInput(fmt::format("tube knitout: the closing seam joins col {} (f{}) with col {} (b{}), which "
                                        "needs racking {}; machine '{}' racks at most {}; balance the last round's "
                                        "halves or leave the tube open",
-                                       f, nf, b, nb, nf - nb, prof.name, prof.max_racking));
-      by_racking[nf - nb].emplace_back(nb, nf);
+                                       f, nf, b, nb, nf - nb, prof.name, R));
+      }
     }
     e.comment(fmt::format("bind-off: closing seam, {} back loops onto the front needles of their pairs", pairs.size()));
     e.settings(prof.writer.bind_off);
     for (const auto& [rk, moves] : by_racking) {
       e.rack(rk);
       for (const auto& [nb, nf] : moves) e.xfer(true, nb, nf);
+      ++st.transfer_passes;
+    }
+    // A pair further apart than the racking limit: its back loop walks
+    // over, alternately onto a front needle of the back wales' parity and a
+    // back needle of the front wales' parity (both empty in the tube's
+    // layout), by at most the largest even / odd racking, then onto its
+    // pair's needle.
+    // the longest step within the racking limit and the distance left whose
+    // parity is `odd`
+    auto step = [&](int left, bool odd) {
+      int k = std::min(R, left);
+      if ((k % 2 == 1) != odd) --k;
+      return k;
+    };
+    for (const auto& [nb, nf] : far) {
+      e.comment(fmt::format("bind-off: closing seam, b{} walks to f{} ({} needles, racking <= {})", nb, nf,
+                            std::abs(nf - nb), R));
+      int cur = nb;  // on the back bed; its parity: the back wales' at first, then the front wales'
+      bool back_parity = true;
+      while (std::abs(nf - cur) > R) {
+        const int d = nf > cur ? 1 : -1;
+        const int m = cur + d * step(std::abs(nf - cur), !back_parity);  // a front needle of the back wales' parity
+        e.rack(m - cur);
+        e.xfer(true, cur, m);
+        const int next = m + d * step(std::abs(nf - m), true);  // a back needle of the front wales' parity
+        e.rack(m - next);
+        e.xfer(false, m, next);
+        st.transfer_passes += 2;
+        cur = next;
+        back_parity = false;
+      }
+      e.rack(nf - cur);
+      e.xfer(true, cur, nf);
       ++st.transfer_passes;
     }
     e.rack(0);

@@ -92,6 +92,13 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
       int l = peak, r = peak;
       while (l > 0 && depth[static_cast<size_t>(l - 1)] >= t) --l;
       while (r + 1 < n && depth[static_cast<size_t>(r + 1)] >= t) ++r;
+      // Strictly inside the arc before: two turn pairs in one wale cannot
+      // both be closed (rule stacked-short-row-ends); the rest waits for
+      // the next rounds.
+      if (!arcs.empty()) {
+        l = std::max(l, arcs.back().first + 1);
+        r = std::min(r, arcs.back().second - 1);
+      }
       if (r - l < 1) break;
       arcs.emplace_back(l, r);
     }
