@@ -306,15 +306,18 @@ TriMesh load_surface_or_shape(const std::string& input, const std::string& units
   if (builtin) *builtin = false;
   if (input.empty()) throw UsageError("the input name is empty; give a mesh file or a built-in shape");
   std::error_code ec;
-  if (std::filesystem::is_directory(input, ec)) {
+  const std::vector<std::string> shapes = shape_names();
+  // A directory is never a mesh: a built-in's name still means the built-in
+  // when a directory of that name is in the way (e.g. an earlier `-o sock`).
+  if (std::filesystem::is_directory(input, ec) && std::find(shapes.begin(), shapes.end(), input) == shapes.end()) {
     throw InvalidInput(fmt::format("{}: is a directory, not a mesh file", shown(input)));
   }
-  if (std::filesystem::is_regular_file(input)) {
+  if (std::filesystem::is_regular_file(input, ec)) {
     description = input;
     return load_surface(input, units);
   }
   std::string names;
-  for (const auto& n : shape_names()) {
+  for (const auto& n : shapes) {
     if (n == input) {
       if (builtin) *builtin = true;
       description = "built-in " + n;

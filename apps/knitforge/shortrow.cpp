@@ -116,6 +116,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double max_stitches = kDefaultMaxStitches;
     bool json = false, no_evaluate = false, ascii = false, no_report = false, tube = false;
     bool no_tube_short_rows = false;
+    int crown_stitches = 12;
     DesignMachineOptions mach;
     DesignPredictOptions predict;
   };
@@ -158,7 +159,12 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   cmd->add_flag("--tube", o->tube,
                 "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
-                "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam");
+                "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam. "
+                "A surface with one boundary loop (a beanie) is knitted from its rim to its crown and closed there");
+  cmd->add_option("--crown-stitches", o->crown_stitches,
+                  "With --tube on a surface with one boundary loop: stitches of the last round, joined in pairs "
+                  "across the beds to close the crown (8..64)")
+      ->check(CLI::Range(8, 64));
   cmd->add_flag("--no-tube-short-rows", o->no_tube_short_rows,
                 "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
                 "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
@@ -191,6 +197,7 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         t.no_report = o->no_report;
         t.mach = o->mach;
         t.short_rows = !o->no_tube_short_rows;
+        t.crown_stitches = o->crown_stitches;
         return run_tube_design(t);
       }
       if (o->no_tube_short_rows)

@@ -36,7 +36,10 @@ int run_tube_design(const TubeCommandOptions& o) {
   opt.short_rows = o.short_rows;
   auto begun = std::make_shared<int>(0);
   opt.progress = [begun](const std::string& stage) { note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / 5, stage)); };
+  opt.crown_stitches = o.crown_stitches;
   const TubeDesign d = design_tube(input, opt);
+  const bool closed_end = d.map.closed_end;
+  const TriMesh& field_mesh = closed_end ? d.cut_surface : input;
 
   note("writing outputs ...");
   Timer t;
@@ -63,7 +66,7 @@ int run_tube_design(const TubeCommandOptions& o) {
     MeshWriteOptions w;
     w.ascii = o.ascii;
     for (const Rgb8& c : scalar_colours(d.field.value, 0.0, 1.0)) w.vertex_colours.push_back({c[0], c[1], c[2]});
-    write_mesh(out("field.ply"), input, w);
+    write_mesh(out("field.ply"), field_mesh, w);
     MeshWriteOptions plain;
     plain.ascii = o.ascii;
     write_mesh(out("target.ply"), input, plain);
@@ -78,7 +81,7 @@ int run_tube_design(const TubeCommandOptions& o) {
                      {"units", o.units},
                      {"vertices", input.num_vertices()},
                      {"faces", input.num_faces()},
-                     {"boundary_loops", 2},
+                     {"boundary_loops", closed_end ? 1 : 2},
                      {"genus", 0},
                      {"area_mm2", d.surface_area}};
   report["route"] = "tube";
@@ -115,10 +118,17 @@ int run_tube_design(const TubeCommandOptions& o) {
                               {"outside", side(d.course_spacing.outside)},
                               {"all", side(d.course_spacing.all)}};
   report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
+  if (closed_end)
+    report["closed_end"] = {{"crown_stitches", d.round_stitches.back()},
+                            {"closing_pairs", static_cast<int>(closing_pairs(d.map).size())},
+                            {"rim_to_crown_mm", d.rim_to_crown},
+                            {"crown_cap_radius_mm", d.crown_radius},
+                            {"crown_cap_area_mm2", d.crown_area}};
+  const DesignMachineOptions& mach = o.mach;
   Timer tm;
   bool machine_ok = true;
   nlohmann::json machine_check;
-  report["machine"] = design_machine_end(o.mach, o.outdir, d.map, knittable, &d.stitch_mesh, machine_ok, machine_check);
+  report["machine"] = design_machine_end(mach, o.outdir, d.map, knittable, &d.stitch_mesh, machine_ok, machine_check);
   if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
   const double machine_seconds = tm.seconds();
   report["knittable"] = knittable && machine_ok;
@@ -143,13 +153,19 @@ int run_tube_design(const TubeCommandOptions& o) {
                    100.0 * (d.stitch_mesh.num_stitches() / expected - 1.0),
                    d.course_spacing.inside.min, d.course_spacing.inside.max, d.course_spacing.outside.min,
                    d.course_spacing.outside.max, d.course_spacing.all.taller, d.course_spacing.all.stitches, d.bend_ratio));
+  if (closed_end)
+    note(fmt::format("tube: closed at the crown: last round {} stitches ({} pairs joined across the beds and bound "
+                     "off), crown {:.1f} mm from the rim, a cap of {:.0f} mm^2 (radius {:.1f} mm) gathered by the "
+                     "closing seam",
+                     d.round_stitches.back(), closing_pairs(d.map).size(), d.rim_to_crown, d.crown_area,
+                     d.crown_radius));
   if (!knittable) {
     const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
     std::fprintf(stderr, "%s", r.text().c_str());
     note("the design is NOT knittable (details in report.json); outputs were written for inspection");
     return 1;
   }
-  return machine_exit_code(machine_ok, o.mach.machine);
+  return machine_exit_code(machine_ok, mach.machine);
 }
 
 }  // namespace knitforge::cli

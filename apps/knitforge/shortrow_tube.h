@@ -13,6 +13,7 @@ struct TubeCommandOptions {
   double edge = 0.0, max_stitches = 0.0;
   bool json = false, ascii = false, no_report = false;
   bool short_rows = true;  ///< !--no-tube-short-rows
+  int crown_stitches = 12;  ///< --crown-stitches (a closed tube: one boundary loop)
   DesignMachineOptions mach;
 };
 

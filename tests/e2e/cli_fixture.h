@@ -40,10 +40,11 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CliRun run(const std::string& args) {
+  /// Runs the CLI with `args` (in directory `cwd` when given).
+  CliRun run(const std::string& args, const std::string& cwd = "") {
     const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
-    const std::string cmd =
-        std::string(KNITFORGE_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") + std::string(KNITFORGE_CLI) +
+                            " " + args + " >" + out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
     CliRun r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

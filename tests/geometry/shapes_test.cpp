@@ -285,6 +285,107 @@ TEST(Shapes, TubeIsAnOpenCylinder) {
   EXPECT_THROW(open_tube(-1.0, 100.0, 4.0), InvalidInput);
 }
 
+// The beanie: one boundary loop (the rim, z = 0, 560 mm round), on the band
+// cylinder or the spheroid, outward normals, the spheroid-plus-band area,
+// mirror-symmetric about x = 0, the crown at the top.
+TEST(Shapes, BeanieIsADomeOnABandClosedAtTheTop) {
+  const BeanieShape b;
+  const double edge = 4.0;
+  const TriMesh m = beanie(b, edge);
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.issues.empty()) << rep.summary();
+  EXPECT_EQ(rep.num_boundary_loops, 1);
+  EXPECT_EQ(rep.genus, 0);
+  EXPECT_EQ(rep.num_components, 1);
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  double rim = 0.0, top = 0.0;
+  for (const auto& loop : he.boundary_loops())
+    for (size_t i = 0; i < loop.size(); ++i) rim += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    top = std::max(top, p.z());
+    const double rho = std::hypot(p.x(), p.y());
+    if (p.z() <= b.band_height) {
+      EXPECT_TRUE(near(rho, b.radius)) << v;
+    } else {
+      const double dz = (p.z() - b.band_height) / b.crown_height, dr = rho / b.radius;
+      EXPECT_NEAR(dr * dr + dz * dz, 1.0, 1e-4) << v;
+    }
+    if (he.is_boundary_vertex(v)) {
+      EXPECT_EQ(p.z(), 0.0) << v;
+    }
+    EXPECT_TRUE(has_vertex(m, Vec3(-p.x(), p.y(), p.z()))) << v;
+  }
+  EXPECT_NEAR(top, b.band_height + b.crown_height, 1e-9);
+  EXPECT_NEAR(rim, 560.0, 0.01 * 560.0);
+  const Vec3 mid(0.0, 0.0, b.band_height);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    const Vec3 out = c.z() > b.band_height ? Vec3(c - mid) : Vec3(c.x(), c.y(), 0.0);
+    EXPECT_GT(face_normal(m, f).dot(out), 0.0) << f;
+  }
+  const double a = b.radius, h = b.crown_height, e = std::sqrt(1.0 - a * a / (h * h));
+  const double area = kPi * a * a + kPi * a * h * std::asin(e) / e + 2.0 * kPi * a * b.band_height;
+  EXPECT_NEAR(total_area(m), area, 0.01 * area);
+  const std::vector<double> lengths = edge_lengths(m);
+  const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
+  EXPECT_GT(*lo, 0.6 * edge);
+  EXPECT_LT(*hi, 1.5 * edge);
+  EXPECT_THROW(beanie(BeanieShape{89.0, 100.0, -1.0}, edge), InvalidInput);
+  EXPECT_THROW(beanie(b, 0.0), InvalidInput);
+}
+
+// The sock: one boundary loop (the rim, a circle of the radius at the top
+// of the leg), every vertex on the swept tube or the toe's hemisphere, the
+// outward normals, the Pappus area, mirror-symmetric about y = 0.
+TEST(Shapes, SockIsABentTubeClosedAtTheToe) {
+  const SockShape s;
+  const double edge = 4.0, r = s.radius, Rb = s.heel_radius, Lf = s.foot_length;
+  const TriMesh m = sock(s, edge);
+  const SurfaceReport rep = validate_surface(m);
+  EXPECT_TRUE(rep.issues.empty()) << rep.summary();
+  EXPECT_EQ(rep.num_boundary_loops, 1);
+  EXPECT_EQ(rep.genus, 0);
+  EXPECT_EQ(rep.num_components, 1);
+  // The nearest point of the axis.
+  auto axis_point = [&](const Vec3& p) {
+    if (p.x() >= Lf) return Vec3(Lf, 0.0, 0.0);
+    if (p.x() >= 0.0) return Vec3(p.x(), 0.0, 0.0);
+    if (p.z() >= Rb) return Vec3(-Rb, 0.0, p.z());
+    const Vec3 q(p.x(), 0.0, p.z() - Rb);
+    return Vec3(Vec3(0.0, 0.0, Rb) + Rb * q.normalized());
+  };
+  const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
+  double rim = 0.0, lo_x = 0.0, hi_x = 0.0, lo_z = 0.0;
+  for (const auto& loop : he.boundary_loops())
+    for (size_t i = 0; i < loop.size(); ++i) rim += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    lo_x = std::min(lo_x, p.x());
+    hi_x = std::max(hi_x, p.x());
+    lo_z = std::min(lo_z, p.z());
+    EXPECT_NEAR((p - axis_point(p)).norm(), r, 1e-9 * r) << v;
+    if (he.is_boundary_vertex(v)) {
+      EXPECT_NEAR(p.z(), Rb + s.leg_length, 1e-9) << v;
+    }
+    EXPECT_TRUE(has_vertex(m, Vec3(p.x(), -p.y(), p.z()))) << v;
+  }
+  EXPECT_NEAR(hi_x - lo_x, Lf + 2 * r + Rb, 1e-6);  // heel to toe: 256 mm
+  EXPECT_NEAR(Rb + s.leg_length - lo_z, Rb + s.leg_length + r, 0.01 * r);  // sole to rim
+  EXPECT_NEAR(rim, 2 * kPi * r, 0.01 * 2 * kPi * r);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto& t = m.faces[f];
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+    EXPECT_GT(face_normal(m, f).dot(c - axis_point(c)), 0.0) << f;
+  }
+  const double area = 2 * kPi * r * r + 2 * kPi * r * (Lf + 0.5 * kPi * Rb + s.leg_length);
+  EXPECT_NEAR(total_area(m), area, 0.01 * area);
+  EXPECT_THROW(sock(SockShape{80.0, 110.0, 70.0, 120.0}, edge), InvalidInput);  // radius above the heel's
+  EXPECT_THROW(sock(SockShape{38.0, 0.0, 70.0, 120.0}, edge), InvalidInput);
+  EXPECT_THROW(sock(s, 0.0), InvalidInput);
+}
+
 // The cap: on the sphere, both rims on their exact circles (the face opening
 // within 35 degrees of -y, the neck within 40 degrees of -z), two loops,
 // area 2 pi r^2 (cos 35 + cos 40).
@@ -365,7 +466,7 @@ TEST(Shapes, SleeveIsATaperedBentTubeWithOutwardNormals) {
 
 TEST(Shapes, MakeShapeByNameIsDeterministic) {
   const auto names = shape_names();
-  ASSERT_EQ(names.size(), 9u);
+  ASSERT_EQ(names.size(), 11u);
   for (const auto& name : names) {
     const TriMesh a = make_shape(name, 8.0);
     const TriMesh b = make_shape(name, 8.0);

@@ -120,6 +120,12 @@ class MapChecker {
           fmt::format("the last row ({}) of the tube is open: a tube ends with a round (its bind-off goes round both "
                       "beds); give it a seam",
                       m_.rows - 1));
+    if (m_.closed_end && m_.rows > 0 && m_.closed(m_.rows - 1) && closing_pairs(m_).empty())
+      add(KnitRule::TubeLayout, {{m_.rows - 1, -1}},
+          fmt::format("the tube is closed after its last row ({}), whose halves hold different numbers of stitches: "
+                      "the closing seam joins each front loop with the back loop opposite it, so give both halves "
+                      "the same count (or leave the tube open)",
+                      m_.rows - 1));
     for (int r = 0; r < m_.rows; ++r) {
       int lo = -1, hi = -1, front = 0, back = 0;
       for (int c = 0; c < C; ++c) {

@@ -24,7 +24,9 @@ namespace knitforge {
 ///   facing sides, docs/representations.md).
 /// Tubes (KnittingMap::seam, docs/tubes.md) add:
 /// - tube-layout: an odd number of columns or fewer than 4; row 0 or the last
-///   row open (cell col = -1);
+///   row open (cell col = -1); a tube closed at its end (closed_end) whose
+///   last round's halves hold different numbers of stitches (no
+///   closing_pairs());
 /// - closed-row: a round holding a short-row end or an Empty cell (the cell);
 ///   the split-row check is left to this for rounds;
 /// - tube-shaping: a half of a round with fewer than 2 stitches (cell col =

@@ -380,6 +380,7 @@ StitchMesh map_to_stitch_mesh_topology(const KnittingMap& map, const KnitParams&
     uint8_t roles = 0;
     if (edge_of_side(st.type, Side::Bottom) >= 0 && adj->neighbor(s, Side::Bottom) < 0) roles |= kRoleCastOn;
     if (edge_of_side(st.type, Side::Top) >= 0 && adj->neighbor(s, Side::Top) < 0) roles |= kRoleBindOff;
+    if (map.closed_end && r == map.rows - 1) roles |= kRoleClosingSeam;
     if (r > 0 && !map.closed(r) && !map.closed(r - 1)) {
       if (c == lo_stitch[r] && c == lo_ext[r]) {
         if (lo_ext[r] < lo_ext[r - 1]) roles |= kRoleOutsideIncrease;

@@ -96,6 +96,7 @@ KnittingMap tube_map(const StitchMesh& mesh, const StitchAdjacency& adj, const s
     }
     map.at(r, c) = to_cell_type(st.type);
     if (st.yarn != 0) map.set_yarn(r, c, st.yarn);
+    if ((st.roles & kRoleClosingSeam) && r == nrows - 1) map.closed_end = true;
   }
   // the seam just after the round's last stitch (its largest index):
   // canonical_seam()

@@ -26,7 +26,8 @@ int KnittingMap::num_stitches() const {
 }
 
 bool KnittingMap::operator==(const KnittingMap& o) const {
-  if (rows != o.rows || cols != o.cols || cells != o.cells || direction != o.direction || seam != o.seam)
+  if (rows != o.rows || cols != o.cols || cells != o.cells || direction != o.direction || seam != o.seam ||
+      closed_end != o.closed_end)
     return false;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
@@ -51,6 +52,8 @@ void check_map_arrays(const KnittingMap& m) {
   if (!m.yarn.empty() && m.yarn.size() != n) {
     throw InvalidInput(fmt::format("knitting map holds {} yarn indices; expected none or {}", m.yarn.size(), n));
   }
+  if (m.closed_end && m.seam.empty())
+    throw InvalidInput("knitting map: only a tube (a map with seams) can be closed at its end");
   if (!m.seam.empty()) {
     if (m.seam.size() != static_cast<size_t>(m.rows)) {
       throw InvalidInput(fmt::format("knitting map has {} rows but {} seam entries (expected none or one per row)",
@@ -83,6 +86,20 @@ std::vector<int> row_columns(const KnittingMap& m, int r) {
     out[static_cast<size_t>(k)] = d > 0 ? (s + k) % m.cols : ((s - 1 - k) % m.cols + m.cols) % m.cols;
   }
   return out;
+}
+
+std::vector<std::pair<int, int>> closing_pairs(const KnittingMap& map) {
+  std::vector<std::pair<int, int>> pairs;
+  if (!map.tubular() || map.rows == 0) return pairs;
+  const int r = map.rows - 1, h = map.tube_half();
+  std::vector<int> front, back;
+  for (int c = 0; c < h; ++c)
+    if (is_stitch(map.at(r, c))) front.push_back(c);
+  for (int c = map.cols - 1; c >= h; --c)
+    if (is_stitch(map.at(r, c))) back.push_back(c);
+  if (front.empty() || front.size() != back.size()) return pairs;
+  for (size_t i = 0; i < front.size(); ++i) pairs.emplace_back(front[i], back[i]);
+  return pairs;
 }
 
 }  // namespace knitforge

@@ -24,6 +24,7 @@
 /// with an empty `seam` array is a sheet: every row open.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "knitforge/core/stitch.h"
@@ -39,6 +40,11 @@ struct KnittingMap {
   /// Empty for a sheet; for a tube one entry per row: -1 open row, else the
   /// seam line (0..cols-1) where the closed row (round) starts.
   std::vector<int> seam;
+  /// A tube closed after its last round (docs/tubes.md, "Closed tubes": a
+  /// beanie's crown, a sock's toe): the last round's loops are joined
+  /// pairwise across the beds (closing_pairs()) and bound off, a seam
+  /// across the top. False for a sheet and an open-ended tube.
+  bool closed_end = false;
 
   KnittingMap() = default;
   /// A rows x cols map filled with `fill`; directions alternate, row 0 going
@@ -69,9 +75,18 @@ struct KnittingMap {
 
 /// Checks that the map's arrays agree with rows x cols (cells, one direction
 /// per row, no or rows*cols yarn indices, no or rows seams, each -1 or a
-/// line 0..cols-1) and every cell has a known type.
+/// line 0..cols-1; closed_end only on a tube) and every cell has a known type.
 /// \throw InvalidInput saying which array is wrong, or the cell (row, column).
 void check_map_arrays(const KnittingMap& map);
+
+/// The pairs a closed tube's last round is joined in (KnittingMap::
+/// closed_end): its front wales (stitch cells of columns 0..cols/2-1) from
+/// the left fold to the right, each with the back wale opposite it when the
+/// tube is laid flat, the back wales also counted from the left fold (the
+/// largest column first). {front column, back column} per pair, left to
+/// right. Empty unless the halves of the last row hold equally many stitches
+/// (at least one each).
+std::vector<std::pair<int, int>> closing_pairs(const KnittingMap& map);
 
 /// The columns of row r in knitting order: every column of the row (stitch
 /// or not) in the order the carriage passes it. Open rows: 0..cols-1 for

@@ -63,6 +63,9 @@ enum BoundaryRole : uint8_t {
   kRoleBindOff = 2,
   kRoleOutsideIncrease = 4,
   kRoleOutsideDecrease = 8,
+  /// A stitch of a closed tube's last round (KnittingMap::closed_end): its
+  /// loop is joined with the one opposite it across the tube and bound off.
+  kRoleClosingSeam = 16,
 };
 
 /// Number of corners of a stitch type: 4 for Knit, 3 for the shaping stitches.

@@ -199,18 +199,19 @@ TriMesh height_field_disk(double r, double edge, int iterations,
 // (equilateral triangles) and every ring is mirror-symmetric about the plane
 // x = 0. Neighbouring rings are joined by the usual ring-marching
 // triangulation that always takes the shorter diagonal.
-TriMesh hemisphere_rings(double r, double edge) {
-  const double spacing = 0.5 * std::sqrt(3.0) * edge;
-  const int rings = std::max(2, static_cast<int>(std::lround(0.5 * kPi * r / spacing)));
-  const double dtheta = 0.5 * kPi / rings;
+// A surface of revolution about the z axis from rings of latitude: ring 0
+// is the pole, ring k (1..rings) the circle of radius profile(k).first at
+// height profile(k).second, with max(6, round(2π ρ / l)) vertices placed as
+// the hemisphere's (see above); the last ring is the boundary. Faces are
+// oriented with normals away from the axis when the pole lies above.
+TriMesh revolution_rings(int rings, double edge, const std::function<std::pair<double, double>(int)>& profile) {
   std::vector<int> start(rings + 1), count(rings + 1);
   std::vector<double> phase(rings + 1, 0.0);  // longitude of the ring's vertex 0
   start[0] = 0;
   count[0] = 1;
   long total = 1;
   for (int k = 1; k <= rings; ++k) {
-    const double s = k == rings ? 1.0 : std::sin(k * dtheta);
-    count[k] = std::max(6, static_cast<int>(std::lround(2.0 * kPi * r * s / edge)));
+    count[k] = std::max(6, static_cast<int>(std::lround(2.0 * kPi * profile(k).first / edge)));
     start[k] = static_cast<int>(total);
     total += count[k];
     phase[k] = 0.5 * kPi + (k % 2 == 1 ? 0.0 : kPi / count[k]);
@@ -218,10 +219,9 @@ TriMesh hemisphere_rings(double r, double edge) {
   TriMesh m;
   m.vertices.reserve(total);
   m.faces.reserve(2 * total);
-  m.vertices.push_back(Vec3(0.0, 0.0, r));
+  m.vertices.push_back(Vec3(0.0, 0.0, profile(0).second));
   for (int k = 1; k <= rings; ++k) {
-    const bool equator = k == rings;
-    const double s = equator ? 1.0 : std::sin(k * dtheta), c = equator ? 0.0 : std::cos(k * dtheta);
+    const auto [rho, z] = profile(k);
     // Longitude 90° + a_j, a_j = offset + 2πj/n; the mirror image (x -> -x)
     // of vertex j is vertex n - j (offset 0) or n - 1 - j (offset π/n), and
     // is copied with x negated so that the symmetry is exact.
@@ -235,7 +235,7 @@ TriMesh hemisphere_rings(double r, double edge) {
         continue;
       }
       const double a = (odd ? 0.0 : kPi / n) + 2.0 * kPi * j / n;
-      m.vertices.push_back(Vec3(mirror == j ? 0.0 : -r * s * std::sin(a), r * s * std::cos(a), r * c));
+      m.vertices.push_back(Vec3(mirror == j ? 0.0 : -rho * std::sin(a), rho * std::cos(a), z));
     }
   }
   for (int j = 0; j < count[1]; ++j) m.faces.push_back({0, start[1] + j, start[1] + (j + 1) % count[1]});
@@ -263,6 +263,50 @@ TriMesh hemisphere_rings(double r, double edge) {
     });
   }
   return m;
+}
+
+TriMesh hemisphere_rings(double r, double edge) {
+  const double spacing = 0.5 * std::sqrt(3.0) * edge;
+  const int rings = std::max(2, static_cast<int>(std::lround(0.5 * kPi * r / spacing)));
+  const double dtheta = 0.5 * kPi / rings;
+  return revolution_rings(rings, edge, [&](int k) {
+    if (k == 0) return std::pair<double, double>(0.0, r);
+    const bool equator = k == rings;
+    const double s = equator ? 1.0 : std::sin(k * dtheta), c = equator ? 0.0 : std::cos(k * dtheta);
+    return std::pair<double, double>(r * s, r * c);
+  });
+}
+
+// The beanie (see beanie() in shapes.h): its meridian, the quarter ellipse
+// (R sin φ, band + H cos φ) from the crown, then the band's straight line
+// down to z = 0, tabulated by arc length and cut into rings an equilateral
+// triangle's height apart.
+TriMesh beanie_rings(const BeanieShape& b, double edge) {
+  constexpr int kTable = 4096;
+  std::vector<double> arc(kTable + 1, 0.0);
+  auto dome = [&](int i) {
+    const double phi = 0.5 * kPi * i / kTable;
+    return std::pair<double, double>(i == kTable ? b.radius : b.radius * std::sin(phi),
+                                     b.band_height + (i == kTable ? 0.0 : b.crown_height * std::cos(phi)));
+  };
+  for (int i = 1; i <= kTable; ++i) {
+    const auto [r0, z0] = dome(i - 1);
+    const auto [r1, z1] = dome(i);
+    arc[i] = arc[i - 1] + std::hypot(r1 - r0, z1 - z0);
+  }
+  const double dome_len = arc[kTable], total = dome_len + b.band_height;
+  const int rings = std::max(2, static_cast<int>(std::lround(total / (0.5 * std::sqrt(3.0) * edge))));
+  return revolution_rings(rings, edge, [&](int k) {
+    if (k == rings) return std::pair<double, double>(b.radius, 0.0);
+    const double s = total * k / rings;
+    if (s >= dome_len) return std::pair<double, double>(b.radius, b.band_height - (s - dome_len));
+    const auto it = std::upper_bound(arc.begin(), arc.end(), s);
+    const int i = std::clamp(static_cast<int>(it - arc.begin()), 1, kTable);
+    const double t = (s - arc[i - 1]) / (arc[i] - arc[i - 1]);
+    const auto [r0, z0] = dome(i - 1);
+    const auto [r1, z1] = dome(i);
+    return std::pair<double, double>(r0 + t * (r1 - r0), z0 + t * (z1 - z0));
+  });
 }
 
 // Ring of n vertices at height z on the circle of radius r: odd rings
@@ -342,6 +386,71 @@ TriMesh hemisphere(double radius, double edge_length) {
   check_size("hemisphere", "radius", radius);
   check_edge("hemisphere", edge_length, radius, 2.0 * kPi * radius * radius);
   return hemisphere_rings(radius, edge_length);
+}
+
+TriMesh beanie(const BeanieShape& shape, double edge_length) {
+  check_size("beanie", "radius", shape.radius);
+  check_size("beanie", "crown height", shape.crown_height);
+  if (!(shape.band_height >= 0.0) || !std::isfinite(shape.band_height))
+    throw InvalidInput(fmt::format("beanie: the band height must be 0 or more (mm), got {}", shape.band_height));
+  const double a = shape.radius, c = shape.crown_height;
+  // Half a spheroid's area (prolate or oblate) plus the band.
+  double dome = kPi * a * a;
+  if (std::abs(c - a) <= 1e-12 * a) {
+    dome = 2.0 * kPi * a * a;
+  } else if (c > a) {
+    const double e = std::sqrt(1.0 - a * a / (c * c));
+    dome += kPi * a * c * std::asin(e) / e;
+  } else {
+    const double e = std::sqrt(1.0 - c * c / (a * a));
+    dome += kPi * c * c / e * std::atanh(e);
+  }
+  check_edge("beanie", edge_length, std::min(a, c), dome + 2.0 * kPi * a * shape.band_height);
+  return beanie_rings(shape, edge_length);
+}
+
+TriMesh sock(const SockShape& s, double edge_length) {
+  check_size("sock", "radius", s.radius);
+  check_size("sock", "foot length", s.foot_length);
+  check_size("sock", "heel radius", s.heel_radius);
+  check_size("sock", "leg length", s.leg_length);
+  if (!(s.radius < s.heel_radius))
+    throw InvalidInput(fmt::format("sock: the radius ({} mm) must be below the heel radius ({} mm)", s.radius,
+                                   s.heel_radius));
+  const double r = s.radius, bend = 0.5 * kPi * s.heel_radius;
+  const double cap = 0.5 * kPi * r, total = cap + s.foot_length + bend + s.leg_length;
+  check_edge("sock", edge_length, std::min(r, s.foot_length),
+             2.0 * kPi * r * r + 2.0 * kPi * r * (s.foot_length + bend + s.leg_length));
+  // The straight sock: the toe's quarter circle from the tip (z = r), then
+  // the tube down to z = -(axis length); a = -z is the distance along the
+  // axis from the toe cap's centre.
+  const int rings = std::max(3, static_cast<int>(std::lround(total / (0.5 * std::sqrt(3.0) * edge_length))));
+  TriMesh m = revolution_rings(rings, edge_length, [&](int k) {
+    const double t = total * k / rings;
+    if (k == rings) return std::pair<double, double>(r, cap - total);
+    if (t < cap) return std::pair<double, double>(r * std::sin(t / r), r * std::cos(t / r));
+    return std::pair<double, double>(r, cap - t);
+  });
+  // Swept along the bent axis: the section's y toward the bend's centre
+  // (n1, in the plane y = 0), its x along +y.
+  const double Rb = s.heel_radius, Lf = s.foot_length;
+  for (Vec3& p : m.vertices) {
+    const double a = -p.z();
+    Vec3 c, n1;
+    if (a <= Lf) {
+      c = Vec3(Lf - a, 0.0, 0.0);
+      n1 = Vec3(0.0, 0.0, 1.0);
+    } else if (a <= Lf + bend) {
+      const double phi = (a - Lf) / Rb;
+      c = Vec3(-Rb * std::sin(phi), 0.0, Rb * (1.0 - std::cos(phi)));
+      n1 = Vec3(std::sin(phi), 0.0, std::cos(phi));
+    } else {
+      c = Vec3(-Rb, 0.0, Rb + (a - Lf - bend));
+      n1 = Vec3(1.0, 0.0, 0.0);
+    }
+    p = c + p.y() * n1 + p.x() * Vec3(0.0, 1.0, 0.0);
+  }
+  return m;
 }
 
 TriMesh triple_peak(double edge_length) {
@@ -519,7 +628,7 @@ TriMesh cap(const CapShape& c, double edge_length) {
 }
 
 std::vector<std::string> shape_names() {
-  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube", "sleeve"};
+  return {"hemisphere", "triple-peak", "monkey-saddle", "disk", "rectangle", "cylinder-patch", "cap", "tube", "sleeve", "beanie", "sock"};
 }
 
 TriMesh make_shape(std::string_view name, double edge_length) {
@@ -532,6 +641,8 @@ TriMesh make_shape(std::string_view name, double edge_length) {
   if (name == "cap") return cap(CapShape{}, edge_length);
   if (name == "tube") return open_tube(40.0, 100.0, edge_length);
   if (name == "sleeve") return sleeve(SleeveShape{}, edge_length);
+  if (name == "beanie") return beanie(BeanieShape{}, edge_length);
+  if (name == "sock") return sock(SockShape{}, edge_length);
   std::string names;
   for (const auto& n : shape_names()) names += (names.empty() ? "" : ", ") + n;
   throw InvalidInput(fmt::format("unknown shape '{}'; the built-in shapes are: {}", name, names));

@@ -6,14 +6,15 @@
 /// reference shapes. The hemisphere and the tube are instead built directly
 /// from rings (no remeshing; well under a millisecond at the default size).
 ///
-/// Every shape but two is a disk (one component, one boundary loop, genus
-/// 0); the `cap` (a dome with a face opening and a neck opening, like a
-/// skull cap or a balaclava) and the open `tube` are annuli (two boundary
+/// Every shape but three is a disk (one component, one boundary loop, genus
+/// 0; the `beanie` too: a dome closed at the top, and the `sock`: a bent tube
+/// closed at the toe); the `cap` (a dome with a face opening and a neck opening, like a
+/// skull cap or a balaclava), the open `tube` and the `sleeve` are annuli (two boundary
 /// loops, genus 0), the inputs that the design routes cut into a disk
 /// themselves (cut_to_disk.h). All are consistently oriented with normals
-/// towards +z (outward for the hemisphere, the cylinder patch, the cap and
-/// the tube) and deterministic. Every vertex lies on the analytic surface
-/// (up to rounding) and every boundary vertex on the analytic boundary
+/// towards +z (outward for the hemisphere, the cylinder patch, the cap,
+/// the tube, the sleeve, the beanie and the sock) and deterministic. Every vertex lies
+/// on the analytic surface (up to rounding) and every boundary vertex on the analytic boundary
 /// curve; corners of rectangular domains are mesh vertices.
 ///
 /// \throw InvalidInput (all functions) when a size or the edge length is not
@@ -140,11 +141,63 @@ struct CapShape {
 ///        overlap or one is not between 5° and 85°.
 TriMesh cap(const CapShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
 
+/// Parameters of beanie() (mm).
+struct BeanieShape {
+  double radius = 89.13;       ///< head radius: circumference 2π r = 560 mm
+  double crown_height = 100.0;  ///< height of the dome above the band (its vertical semi-axis)
+  double band_height = 40.0;    ///< height of the straight band above the rim (0: no band)
+};
+
+/// A beanie: a dome closed at the top on a short cylindrical band, open at
+/// the bottom. The band is the cylinder x² + y² = r², z in [0, band], the
+/// crown the upper half of the spheroid x² + y² over r² plus (z - band)² over
+/// crown_height² = 1; the rim is the circle of radius r in z = 0 (one
+/// boundary loop: a disk), the crown the point (0, 0, band + crown_height).
+/// Mirror-symmetric about the planes x = 0 and y = 0 up to the ring
+/// phases (exactly about x = 0); normals outward. With the defaults: 178 mm
+/// across, 140 mm tall, rim 560 mm round, meridian from rim to crown
+/// 40 + 148 = 188 mm, area about 22,400 + 61,300 ≈ 83,700 mm². Built like
+/// hemisphere(): rings of latitude an equilateral triangle's height apart
+/// along the meridian (tabulated by arc length), ring 0 the crown.
+/// \throw InvalidInput (besides the common conditions) when the band
+///        height is negative.
+TriMesh beanie(const BeanieShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
+
+/// Parameters of sock() (mm).
+struct SockShape {
+  double radius = 38.0;        ///< radius of the tube (foot and leg): 239 mm round
+  double foot_length = 110.0;  ///< straight foot, from the toe cap's centre to the heel's bend
+  double heel_radius = 70.0;   ///< radius of the quarter circle the axis follows round the heel
+  double leg_length = 120.0;   ///< straight leg above the bend, up to the rim
+};
+
+/// A sock: a tube of constant radius closed by a hemisphere at the toe,
+/// whose axis runs from the toe cap's centre (foot_length, 0, 0) along -x,
+/// bends up round the heel on the quarter circle of heel_radius about
+/// (0, 0, heel_radius), and goes up along +z to the rim, the circle of the
+/// radius in the plane z = heel_radius + leg_length centred on
+/// (-heel_radius, 0, .). The cross-sections are normal to the axis; the
+/// inside of the bend (the instep) faces the bend's centre, the outside is
+/// the heel. One boundary loop (a disk, like the beanie), mirror-symmetric
+/// about the plane y = 0, normals outward. With the defaults: 256 mm from
+/// heel to toe, 228 mm from the sole to the rim, area 2π r² + 2π r
+/// (foot + π/2 heel_radius + leg) ≈ 93,400 mm² (Pappus for the bend). Built
+/// as a surface of revolution from rings (like beanie()), toe tip first,
+/// then swept along the bent axis (like sleeve()): rings are one equilateral
+/// triangle's height apart on the axis, so the triangles are squashed along
+/// the axis on the instep side of the bend and stretched on the heel side,
+/// by (heel_radius -+ radius) / heel_radius.
+/// 	hrow InvalidInput (besides the common conditions) when the radius is
+///        not below the heel radius or a length is not positive.
+TriMesh sock(const SockShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
+
 /// Names accepted by make_shape(), with their default sizes:
 /// hemisphere (r 75), triple-peak (150 x 100), monkey-saddle (100 x 100 x 100),
 /// disk (r 50), rectangle (150 x 100), cylinder-patch (r 50, 180°, height 100),
 /// cap (CapShape defaults: r 90, two openings), tube (r 40, height 100, open),
-/// sleeve (SleeveShape defaults: r 50 to 30, bent 50° round a 300 mm arc).
+/// sleeve (SleeveShape defaults: r 50 to 30, bent 50° round a 300 mm arc),
+/// beanie (BeanieShape defaults: 560 mm round, dome 100 mm on a 40 mm band),
+/// sock (SockShape defaults: 239 mm round, 256 mm heel to toe, 228 mm high).
 std::vector<std::string> shape_names();
 
 /// The named shape at its default size, meshed with the given edge length.

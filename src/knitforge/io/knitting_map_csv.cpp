@@ -66,6 +66,7 @@ std::string knitting_map_to_csv(const KnittingMap& map) {
     }
     out += fmt::format("{},{}", r, d > 0 ? '>' : '<');
     if (tube) out += map.closed(r) ? fmt::format(",{}", map.seam[static_cast<size_t>(r)]) : std::string(",-");
+    if (tube && map.closed_end && r == map.rows - 1) out += ":close";
     for (int c = 0; c < map.cols; ++c) {
       const int t = static_cast<int>(map.at(r, c));
       if (t < 0 || t > static_cast<int>(CellType::Empty)) {
@@ -128,6 +129,7 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
     std::vector<int> yarn;
   };
   std::vector<Row> rows;
+  bool closed_end = false;
   int64_t expected = -1, last_line = header_line;
   bool any_yarn = false;
   while (lines.next(line)) {
@@ -162,9 +164,19 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
       fail_at(source, ln, 2, fmt::format("unknown direction '{}' (expected > for left to right or < for right "
                                          "to left)", fields[1]));
     }
-    if (tube && fields[2] != "-" && !fields[2].empty()) {
+    std::string_view seam_field = tube ? std::string_view(fields[2]) : std::string_view();
+    constexpr std::string_view kClose = ":close";
+    if (seam_field.size() > kClose.size() && seam_field.substr(seam_field.size() - kClose.size()) == kClose) {
+      if (!rows.empty()) {
+        fail_at(source, ln, 3, fmt::format("seam '{}': only the last course (the top line) can close the tube "
+                                           "(:close)", seam_field));
+      }
+      closed_end = true;
+      seam_field.remove_suffix(kClose.size());
+    }
+    if (tube && seam_field != "-" && !seam_field.empty()) {
       int64_t v = -1;
-      if (!parse_int64(fields[2], v) || v < 0 || v >= static_cast<int64_t>(cols)) {
+      if (!parse_int64(seam_field, v) || v < 0 || v >= static_cast<int64_t>(cols)) {
         fail_at(source, ln, 3,
                 fmt::format("seam '{}': expected - for an open row (a short row) or the line 0..{} where the "
                             "round starts (0 = left of column 0)",
@@ -209,6 +221,7 @@ KnittingMap knitting_map_from_csv(std::string_view text, const std::string& sour
   }
   KnittingMap map(static_cast<int>(rows.size()), static_cast<int>(cols));
   if (tube) map.seam.assign(rows.size(), -1);
+  map.closed_end = closed_end;
   for (int r = 0; r < map.rows; ++r) {
     const Row& row = rows[rows.size() - 1 - r];
     map.direction[r] = row.dir;

@@ -29,6 +29,63 @@ bool shares_vertex(const std::vector<int>& a, const std::vector<int>& b) {
   return false;
 }
 
+// A tube's end: a closed tube (KnittingMap::closed_end) joins each
+// closing pair's two loops, and nothing else, in one loop (the closing
+// seam); an open tube joins no two loops of its last round except
+// neighbours in the round (its chain bind-off).
+template <class Report, class Cell>
+void check_tube_end(const KnitGraph& graph, const KnittingMap& map, const StitchMesh& mesh, const StitchAdjacency& adj,
+                    const std::vector<int>& fab, int n, Report& report, Cell& cell) {
+  const int last = map.rows - 1;
+  std::vector<int> stitch_at(static_cast<size_t>(map.cols), -1);
+  for (int k = 0; k < n; ++k) {
+    const Stitch& S = mesh.stitches[static_cast<size_t>(k)];
+    if (S.course == last) stitch_at[static_cast<size_t>(S.wale)] = k;
+  }
+  auto loop_of = [&](int k) { return fab[static_cast<size_t>(k)]; };
+  auto child_of = [&](int k) { return graph.loops[static_cast<size_t>(loop_of(k))].child; };
+  if (map.closed_end) {
+    for (const auto& [f, b] : closing_pairs(map)) {
+      const int kf = stitch_at[static_cast<size_t>(f)], kb = stitch_at[static_cast<size_t>(b)];
+      if (kf < 0 || kb < 0) continue;  // missing loops: reported by "count"
+      const int c = child_of(kf);
+      const bool joined = c >= 0 && c == child_of(kb) && graph.parents_of(c).size() == 2;
+      if (!joined)
+        report("closing", kf, loop_of(kf),
+               fmt::format("the tube is closed: {} and {} (the loop opposite it) should be pulled through together by "
+                           "one loop of the closing seam, but {}",
+                           cell(kf), cell(kb),
+                           c < 0 ? std::string("the first is never pulled through")
+                                 : c != child_of(kb)
+                                       ? fmt::format("they are pulled through by different loops (lines {} and {})",
+                                                     graph.loops[static_cast<size_t>(c)].line,
+                                                     child_of(kb) >= 0
+                                                         ? graph.loops[static_cast<size_t>(child_of(kb))].line
+                                                         : 0)
+                                       : fmt::format("the loop of line {} also takes {} other loop(s)",
+                                                     graph.loops[static_cast<size_t>(c)].line,
+                                                     graph.parents_of(c).size() - 2)));
+    }
+    return;
+  }
+  // open: two last-round loops under one child must be neighbours in the round
+  std::vector<int> first_parent_stitch(static_cast<size_t>(graph.num_loops()), -1);
+  for (int k : stitch_at) {
+    if (k < 0) continue;
+    const int c = child_of(k);
+    if (c < 0) continue;
+    int& other = first_parent_stitch[static_cast<size_t>(c)];
+    if (other < 0) {
+      other = k;
+    } else if (adj.next_in_course(other) != k && adj.next_in_course(k) != other) {
+      report("closing", k, loop_of(k),
+             fmt::format("the tube is open at its end, but {} and {} are pulled through together (line {}), as a "
+                         "closing seam would join them; mark the last row ':close' if the tube is meant to be closed",
+                         cell(other), cell(k), graph.loops[static_cast<size_t>(c)].line));
+    }
+  }
+}
+
 }  // namespace
 
 GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& map, const CompareOptions& options) {
@@ -172,6 +229,7 @@ GraphComparison compare_knit_graph(const KnitGraph& graph, const KnittingMap& ma
       }
     }
   }
+  if (map.tubular() && map.rows > 0) check_tube_end(graph, map, mesh, adj, fab, n, report, cell);
   return out;
 }
 

@@ -36,7 +36,12 @@
 /// must be knitted on the back bed ("bed"), in the machine direction opposite
 /// to their row's ("direction"); the course check compares consecutive
 /// stitches on one bed (each in its machine direction) and skips the step
-/// across a fold.
+/// across a fold. A tube's end ("closing"): when the map is closed at its
+/// end (KnittingMap::closed_end), the loops of each closing pair
+/// (closing_pairs()) are pulled through together by one loop that takes
+/// nothing else (the closing seam, knitted in the bind-off section); when it
+/// is open, no loop pulls through two loops of the last round that are not
+/// neighbours in it (an open tube's chain bind-off joins neighbours only).
 /// Maps whose rows are knitted with several yarns at once (jacquard) are not
 /// covered: formation order is then not the map's knitting order.
 
@@ -50,7 +55,7 @@ namespace knitforge {
 
 /// One disagreement between the knit graph and the map.
 struct GraphMismatch {
-  std::string kind;   ///< "count", "bed", "direction", "course", "wale", "decrease"
+  std::string kind;   ///< "count", "bed", "direction", "course", "wale", "decrease", "closing"
   int stitch = -1;    ///< map stitch index (knitting order), -1 when none
   int row = -1, col = -1;  ///< its map cell
   int loop = -1;      ///< knit graph loop, -1 when none

@@ -204,53 +204,147 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
   // 5. bind-off
   const int last = R - 1;
   const int dl = map.direction[static_cast<size_t>(last)];
-  std::vector<int> ring;  // the last round's stitches in knitting order
-  for (int c : row_columns(map, last))
-    if (is_stitch(map.at(last, c))) ring.push_back(c);
-  if (opt.bind_off == BindOff::Chain) {
-    e.comment(fmt::format("bind-off: chain round the tube from the seam (each loop onto the next wale's needle, "
-                          "knit), {} loops",
-                          ring.size()));
+  // A loop the chain bind-off passes: its bed, needle and the carriage
+  // direction it is knitted in.
+  struct Spot {
+    bool back;
+    int needle, dir;
+  };
+  std::vector<Spot> chain;  // in bind-off order
+  if (map.closed_end) {
+    // Closing seam: each back loop onto the front needle of its pair, one
+    // joining pass over the front needles (each knits through its pair), then
+    // the joined loops chain off along the front bed.
+    const auto pairs = closing_pairs(map);
+    if (pairs.empty())
+      throw InvalidInput(fmt::format("tube knitout: the tube is closed after its last round ({}), whose halves hold "
+                                     "different numbers of stitches; no closing seam can pair them",
+                                     last));
+    std::map<int, std::vector<std::pair<int, int>>> by_racking;  // racking -> {back needle, front needle}
+    std::vector<std::pair<int, int>> far;  // pairs further apart than the machine racks
+    const int R = prof.max_racking;
+    for (const auto& [f, b] : pairs) {
+      const int nf = N(last, f), nb = N(last, b);
+      if (std::abs(nf - nb) <= R) {
+        by_racking[nf - nb].emplace_back(nb, nf);
+      } else if (R >= 2) {
+        far.emplace_back(nb, nf);
+      } else {
+        throw InvalidInput(fmt::format("tube knitout: the closing seam joins col {} (f{}) with col {} (b{}), which "
+                                       "needs racking {}; machine '{}' racks at most {}; balance the last round's "
+                                       "halves or leave the tube open",
+                                       f, nf, b, nb, nf - nb, prof.name, R));
+      }
+    }
+    e.comment(fmt::format("bind-off: closing seam, {} back loops onto the front needles of their pairs", pairs.size()));
     e.settings(prof.writer.bind_off);
-    for (size_t k = 0; k + 1 < ring.size(); ++k) {
-      const int a = ring[k], b = ring[k + 1];
-      const int na = N(last, a), nb = N(last, b);
+    for (const auto& [rk, moves] : by_racking) {
+      e.rack(rk);
+      for (const auto& [nb, nf] : moves) e.xfer(true, nb, nf);
+      ++st.transfer_passes;
+    }
+    // A pair further apart than the racking limit: its back loop walks
+    // over, alternately onto a front needle of the back wales' parity and a
+    // back needle of the front wales' parity (both empty in the tube's
+    // layout), by at most the largest even / odd racking, then onto its
+    // pair's needle.
+    // the longest step within the racking limit and the distance left whose
+    // parity is `odd`
+    auto step = [&](int left, bool odd) {
+      int k = std::min(R, left);
+      if ((k % 2 == 1) != odd) --k;
+      return k;
+    };
+    for (const auto& [nb, nf] : far) {
+      e.comment(fmt::format("bind-off: closing seam, b{} walks to f{} ({} needles, racking <= {})", nb, nf,
+                            std::abs(nf - nb), R));
+      int cur = nb;  // on the back bed; its parity: the back wales' at first, then the front wales'
+      bool back_parity = true;
+      while (std::abs(nf - cur) > R) {
+        const int d = nf > cur ? 1 : -1;
+        const int m = cur + d * step(std::abs(nf - cur), !back_parity);  // a front needle of the back wales' parity
+        e.rack(m - cur);
+        e.xfer(true, cur, m);
+        const int next = m + d * step(std::abs(nf - m), true);  // a back needle of the front wales' parity
+        e.rack(m - next);
+        e.xfer(false, m, next);
+        st.transfer_passes += 2;
+        cur = next;
+        back_parity = false;
+      }
+      e.rack(nf - cur);
+      e.xfer(true, cur, nf);
+      ++st.transfer_passes;
+    }
+    e.rack(0);
+    // The carrier stands where the last round ended (its seam); it goes to
+    // the nearer end of the front bed and joins from there.
+    const int seam_line = map.seam[static_cast<size_t>(last)];
+    const int lo = N(last, pairs.front().first), hi = N(last, pairs.back().first);
+    const bool from_left = seam_line == 0 || (seam_line != h && (seam_line < h ? seam_line <= h / 2
+                                                                               : C - seam_line <= (C - h) / 2));
+    const int dj = from_left ? +1 : -1;
+    if (seam_line != 0 && seam_line != h) {
+      // the carrier is inside a bed: bring it to the joining pass's start
+      e.comment(fmt::format("bind-off: carrier {} moves to the {} end of the front bed", M,
+                            from_left ? "left" : "right"));
+      e.miss_on(-dj, false, from_left ? lo : hi, M);
+    }
+    e.comment(fmt::format("bind-off: joining pass, {} front needles each knit through their two loops", pairs.size()));
+    for (size_t k = 0; k < pairs.size(); ++k)
+      e.knit_on(dj, false, N(last, pairs[from_left ? k : pairs.size() - 1 - k].first), M);
+    for (size_t k = 0; k < pairs.size(); ++k)
+      chain.push_back({false, N(last, pairs[from_left ? pairs.size() - 1 - k : k].first), -dj});
+    e.comment(fmt::format("bind-off: chain along the joined front loops from f{}, {} loops", from_left ? hi : lo,
+                          chain.size()));
+  } else {
+    for (int c : row_columns(map, last))
+      if (is_stitch(map.at(last, c))) chain.push_back({back(c), N(last, c), mdir(c, dl)});
+  }
+  if (opt.bind_off == BindOff::Chain || map.closed_end) {
+    if (!map.closed_end) {
+      e.comment(fmt::format("bind-off: chain round the tube from the seam (each loop onto the next wale's needle, "
+                            "knit), {} loops",
+                            chain.size()));
+      e.settings(prof.writer.bind_off);
+    }
+    for (size_t k = 0; k + 1 < chain.size(); ++k) {
+      const Spot a = chain[k], b = chain[k + 1];
       auto check = [&](int rk) {
         if (std::abs(rk) > prof.max_racking)
-          throw InvalidInput(fmt::format("tube bind-off: moving the loop of col {} (needle {}) onto col {} (needle {}) "
-                                         "needs racking {}; machine '{}' racks at most {}; balance the tube's halves "
-                                         "or use --bind-off waste",
-                                         a, na, b, nb, rk, prof.name, prof.max_racking));
+          throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking {}; machine "
+                                         "'{}' racks at most {}; balance the tube's halves or use --bind-off waste",
+                                         a.back ? 'b' : 'f', a.needle, b.back ? 'b' : 'f', b.needle, rk, prof.name,
+                                         prof.max_racking));
         return rk;
       };
-      if (back(a) == back(b)) {
+      if (a.back == b.back) {
         e.rack(0);
-        e.xfer(back(a), na, na);
-        e.rack(check(back(a) ? na - nb : nb - na));
-        e.xfer(!back(a), na, nb);
+        e.xfer(a.back, a.needle, a.needle);
+        e.rack(check(a.back ? a.needle - b.needle : b.needle - a.needle));
+        e.xfer(!a.back, a.needle, b.needle);
         st.transfer_passes += 2;
       } else {
         // across a fold: back needle nb faces front na at racking na - nb
-        e.rack(check(back(a) ? nb - na : na - nb));
-        e.xfer(back(a), na, nb);
+        e.rack(check(a.back ? b.needle - a.needle : a.needle - b.needle));
+        e.xfer(a.back, a.needle, b.needle);
         ++st.transfer_passes;
       }
       e.rack(0);
-      e.knit_on(mdir(b, dl), back(b), nb, M);
+      e.knit_on(b.dir, b.back, b.needle, M);
     }
-    const int stop = ring.back();
-    const int ns = N(last, stop);
-    const int bd = mdir(stop, dl);
+    const Spot stop = chain.back();
+    const int ns = stop.needle, bd = stop.dir;
     e.comment(fmt::format("bind-off: tail of {} stitches on {}{}; thread the cut yarn end through its last loop",
-                          opt.tail_rows, back(stop) ? 'b' : 'f', ns));
-    for (int t = 0; t < opt.tail_rows; ++t) e.knit_on(t % 2 == 0 ? -bd : bd, back(stop), ns, M);
+                          opt.tail_rows, stop.back ? 'b' : 'f', ns));
+    for (int t = 0; t < opt.tail_rows; ++t) e.knit_on(t % 2 == 0 ? -bd : bd, stop.back, ns, M);
     const int beyond = ns + 2 * bd;
     if (beyond >= 1 && beyond <= prof.needle_count) {
       e.comment(fmt::format("bind-off: carrier {} moves two needles on before it goes out", M));
-      e.miss_on(bd, back(stop), beyond, M);
+      e.miss_on(bd, stop.back, beyond, M);
     }
     e.carrier_out(M);
-    e.line("drop {}{}", back(stop) ? 'b' : 'f', ns);
+    e.line("drop {}{}", stop.back ? 'b' : 'f', ns);
   } else {
     e.comment(fmt::format("bind-off: live loops onto {} rounds of waste yarn (carrier {})", opt.bind_off_waste_rows,
                           W));

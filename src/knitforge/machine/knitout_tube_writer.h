@@ -36,6 +36,13 @@
 ///     stitches, the carrier goes out and the tail loop is dropped.
 ///     BindOff::Waste: the waste carrier knits bind_off_waste_rows rounds
 ///     over the live loops, goes out, and every loop is dropped.
+///     A closed tube (KnittingMap::closed_end) ends with its closing seam
+///     whatever the bind-off option: `; bind-off: closing seam`, every
+///     back loop of the last round onto the front needle of its pair
+///     (closing_pairs(); one transfer pass per racking), a joining pass
+///     knitting each front needle through its two loops (the carrier first
+///     misses to the nearer end of the front bed when the round ended
+///     inside a bed), then the chain as above along the front bed, a tail.
 
 #include <string>
 
@@ -52,8 +59,9 @@ struct TubeWriterSetup {
 
 /// The program of a tube (see the file comment), not yet verified.
 /// \throw InvalidInput when the tube layout has a problem (the message names
-///        the cell), the tube needs more needles than the bed has, or the
-///        bind-off would rack beyond the machine's limit.
+///        the cell), the tube needs more needles than the bed has, the
+///        bind-off or a closing pair would rack beyond the machine's limit,
+///        or a closed tube's last round has unequal halves.
 KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& profile,
                                   const KnitoutOptions& options, const TubeWriterSetup& setup);
 

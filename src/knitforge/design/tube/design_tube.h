@@ -21,6 +21,14 @@
 ///
 /// A tube that needs no wedge (a straight tube), or short_rows = false,
 /// is knitted in plain rounds, each once round the whole tube.
+///
+/// A surface with one boundary loop (a disk: a beanie) is a closed tube:
+/// its crown cap is cut off (tube_crown.h), the annulus left is knitted
+/// from the rim to the crown ring as an open tube is (with wedges where it
+/// bends: a sock's heel), with the halves of every round kept equal from
+/// the first decrease on, and the
+/// last round is joined across the beds and bound off (the map's
+/// closed_end; docs/tubes.md, "Closed tubes").
 /// Deterministic.
 
 #include <functional>
@@ -50,6 +58,10 @@ struct TubeDesignOptions {
   /// of a bend (tube_short_rows.h); false: plain rounds, one stitch height
   /// apart on average.
   bool short_rows = true;
+  /// A closed tube (a surface with one boundary loop, tube_crown.h): the
+  /// stitches of its last round, where the closing seam joins the halves in
+  /// pairs (8..64; 12 by default: a 42 mm crown ring at sw 3.5).
+  int crown_stitches = 12;
 };
 
 /// Wall-clock seconds per stage.
@@ -72,12 +84,18 @@ struct TubeDesign {
   int wedges = 0, short_rows = 0, turns = 0;  ///< short-row wedges, their rows and turns
   double bend_ratio = 1.0;  ///< TubeSpacing::ratio: outside over inside rim-to-rim distance
   CourseSpacing course_spacing;  ///< stitch heights / sh along the inside and the outside line
+  /// Closed tubes (tube_crown.h; zero otherwise): the cap cut off round the
+  /// crown (its geodesic depth, mm, and area, mm^2) and the crown's distance
+  /// from the rim (mm). The map has closed_end set.
+  double crown_radius = 0, crown_area = 0, rim_to_crown = 0;
+  TriMesh cut_surface;  ///< closed tubes: the surface without its crown cap (where `field` lives)
   TubeTimings seconds;
 };
 
 /// Runs the route on `surface` (mm).
 /// \throw InvalidInput when the surface is not an annulus (tube_field()) or
-///        a round is not one closed loop; SolverError from the field.
+///        a disk with one crown (cut_crown()), or a round is not one closed
+///        loop; SolverError from the field.
 TubeDesign design_tube(const TriMesh& surface, const TubeDesignOptions& options);
 
 }  // namespace knitforge

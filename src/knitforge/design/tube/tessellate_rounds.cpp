@@ -79,7 +79,7 @@ std::vector<int> choose_increases(const std::vector<int>& live, int lo, int hi, 
 
 }  // namespace
 
-RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params) {
+RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params, bool equal_halves) {
   if (rounds.size() < 2) throw InvalidInput("tube tessellation: needs at least two rounds (the two rims)");
   if (!(params.stitch_width > 0.0) || !(params.stitch_height > 0.0))
     throw InvalidInput("tube tessellation: the stitch width and height must be positive");
@@ -114,13 +114,14 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
     const int want = t.ideal[static_cast<size_t>(k + 1)];
     std::vector<int> next;
     bool shaped = false;
+    int front_next = 0;
     for (int half = 0; half < 2; ++half) {
       const int lo = half * H, hi = lo + H;
       std::vector<int> cols;
       for (int c : live[static_cast<size_t>(k)])
         if (c >= lo && c < hi) cols.push_back(c);
       const int c = static_cast<int>(cols.size());
-      const int target = half == 0 ? (want + 1) / 2 : want / 2;
+      const int target = half == 0 ? (want + 1) / 2 : equal_halves ? front_next : want / 2;
       const int delta = std::clamp(target - c, -max_change(c), max_change(c));
       const double phase = std::fmod(kGolden * (shaping_rows + 1) + 0.5 * half, 1.0);
       if (delta < 0 && c + delta >= 2) {
@@ -138,11 +139,23 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
         std::sort(cols.begin(), cols.end());
       }
       next.insert(next.end(), cols.begin(), cols.end());
+      if (half == 0) front_next = static_cast<int>(cols.size());
     }
     if (shaped) ++shaping_rows;
     live[static_cast<size_t>(k + 1)] = next;
   }
   if (K >= 2) live[static_cast<size_t>(K)] = live[static_cast<size_t>(K - 1)];
+  if (equal_halves) {
+    int front = 0;
+    for (int c : live.back()) front += c < H ? 1 : 0;
+    const int back = static_cast<int>(live.back().size()) - front;
+    if (front != back)
+      throw InvalidInput(fmt::format(
+          "tube tessellation: the last round's halves hold {} and {} stitches, the closing seam needs them equal; "
+          "the rounds narrow faster than the decreases can follow (at most a quarter of a half per round): more "
+          "crown stitches or a surface that narrows more slowly",
+          front, back));
+  }
   for (size_t k = 0; k < rounds.size(); ++k) t.stitches.push_back(static_cast<int>(live[k].size()));
   for (size_t k = 0; k + 1 < rounds.size(); ++k) {
     std::vector<int> gone, started;
@@ -157,8 +170,9 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
   return t;
 }
 
-RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params) {
-  RoundWales w = round_wales(rounds, params);
+RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params,
+                                     bool equal_halves) {
+  RoundWales w = round_wales(rounds, params, equal_halves);
   const int K = static_cast<int>(rounds.size()) - 1, H = w.columns / 2, N = w.columns;
   const std::vector<std::vector<int>>& live = w.live;
   RoundsTessellation t;

@@ -56,8 +56,12 @@ struct RoundWales {
 
 /// The live wales of every round (see the file comment: counts, halves,
 /// where wales end and start).
-/// \throw InvalidInput for fewer than two rounds or an invalid stitch size.
-RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params);
+/// With `equal_halves` (a closed tube, tube_crown.h) the back half follows
+/// the front half's count instead of floor(m/2), so that the last round's
+/// halves hold equally many stitches (the closing seam joins them in pairs).
+/// \throw InvalidInput for fewer than two rounds or an invalid stitch size;
+///        with equal_halves, when the last round's halves still differ.
+RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params, bool equal_halves = false);
 
 /// The tubular stitch mesh and its counts.
 struct RoundsTessellation {
@@ -69,7 +73,9 @@ struct RoundsTessellation {
 };
 
 /// Tessellates the rounds (at least two: the two rims).
-/// \throw InvalidInput for fewer than two rounds or an invalid stitch size.
-RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params);
+/// \throw InvalidInput for fewer than two rounds or an invalid stitch size
+///        (and as round_wales() with equal_halves).
+RoundsTessellation tessellate_rounds(const std::vector<RoundCurve>& rounds, const KnitParams& params,
+                                     bool equal_halves = false);
 
 }  // namespace knitforge

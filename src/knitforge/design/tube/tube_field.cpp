@@ -36,8 +36,9 @@ TubeField tube_field(const TriMesh& mesh, const std::string& what) {
   }
   if (rep.num_boundary_loops != 2 || rep.genus != 0) {
     throw InvalidInput(fmt::format(
-        "{}: --tube needs a surface with exactly two boundary loops and no handle (a tube: sleeve, leg, "
-        "body), this one has {} boundary loop(s) and genus {}; design it without --tube, as a sheet (more "
+        "{}: --tube needs a surface with two boundary loops (a tube: sleeve, leg, body) or one (a closed "
+        "tube: a beanie) and no handle, this one has {} boundary loop(s) and genus {}; design it without "
+        "--tube, as a sheet (more "
         "loops or handles are then cut open by seams first)",
         what, rep.num_boundary_loops, rep.genus));
   }

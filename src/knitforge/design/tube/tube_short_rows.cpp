@@ -54,7 +54,7 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
   out.levels.back() = 1.0;
   for (int k = 1; k < K; ++k) out.levels[static_cast<size_t>(k)] = sp.level_of_inside(total * k / K);
   out.rounds = tube_round_curves(mesh, field, out.levels, start);
-  out.wales = round_wales(out.rounds, o.params);
+  out.wales = round_wales(out.rounds, o.params, o.equal_halves);
   const int N = out.wales.columns, H = N / 2;
   const auto& live = out.wales.live;
 
@@ -92,6 +92,13 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
       int l = peak, r = peak;
       while (l > 0 && depth[static_cast<size_t>(l - 1)] >= t) --l;
       while (r + 1 < n && depth[static_cast<size_t>(r + 1)] >= t) ++r;
+      // Strictly inside the arc before: two turn pairs in one wale cannot
+      // both be closed (rule stacked-short-row-ends); the rest waits for
+      // the next rounds.
+      if (!arcs.empty()) {
+        l = std::max(l, arcs.back().first + 1);
+        r = std::min(r, arcs.back().second - 1);
+      }
       if (r - l < 1) break;
       arcs.emplace_back(l, r);
     }

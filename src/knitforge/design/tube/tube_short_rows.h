@@ -13,7 +13,9 @@
 ///     since the start rim exceeds the rows knitted there by at least one
 ///     stitch height get a wedge of short rows: depth d = floor((excess + 1)
 ///     / 2) turning pairs (two rows each), the arc of depth >= t the run of
-///     wales round the deepest one (at least 2 wales wide). A wedge of m nested
+///     wales round the deepest one (at least 2 wales wide), each arc strictly
+///     inside the one before (a wale holds one turn pair at most; what does
+///     not fit waits for the next rounds). A wedge of m nested
 ///     arcs [l_t, r_t] knits, from the column where the round before ended
 ///     (r_in): < [l_1, r_in], then > [l_t, r_t+1], < [l_t+1, r_t+1] for t < m,
 ///     and > [l_m, r_1]; the next round goes on from r_1 + 1 (its seam). Every
@@ -46,6 +48,9 @@ struct TubeShortRowOptions {
   KnitParams params;
   int table_levels = 256;  ///< rounds of the spacing table
   int table_fractions = 128;  ///< places round each table round
+  /// A closed tube (tube_crown.h): the halves of the full rounds kept equal
+  /// (round_wales() with equal_halves), so that the closing seam can pair them.
+  bool equal_halves = false;
 };
 
 /// A tube with short-row wedges.
