@@ -498,6 +498,23 @@ std::string shape_name_list() {
 
 void note(const std::string& message) { std::fprintf(stderr, "knitforge: %s\n", message.c_str()); }
 
+void write_vertex_coloured(const std::string& path, const TriMesh& surface, const std::vector<double>& value, double lo,
+                           double hi, bool ascii) {
+  MeshWriteOptions w;
+  w.ascii = ascii;
+  for (const Rgb8& c : scalar_colours(value, lo, hi > lo ? hi : lo + 1)) w.vertex_colours.push_back({c[0], c[1], c[2]});
+  write_mesh(path, surface, w);
+}
+
+std::pair<std::vector<double>, double> divergence_magnitude(const std::vector<double>& divergence) {
+  std::vector<double> mag(divergence.size());
+  for (size_t i = 0; i < mag.size(); ++i) mag[i] = std::abs(divergence[i]);
+  std::vector<double> sorted = mag;
+  std::sort(sorted.begin(), sorted.end());
+  const double p99 = sorted.empty() ? 1.0 : sorted[static_cast<size_t>(0.99 * static_cast<double>(sorted.size() - 1))];
+  return {std::move(mag), p99};
+}
+
 void write_coloured_stitches(const std::string& path, const StitchMesh& mesh, const std::vector<double>& value,
                              double hi) {
   TriMesh tri;

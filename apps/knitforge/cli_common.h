@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -206,6 +207,15 @@ void add_design_machine_options(CLI::App& cmd, DesignMachineOptions& options);
 nlohmann::json design_machine_end(const DesignMachineOptions& options, const std::string& outdir,
                                   const KnittingMap& map, bool map_knittable, const StitchMesh* designed,
                                   bool& machine_ok, nlohmann::json& machine_check);
+
+/// Per-vertex values as colours on the surface (viridis over [lo, hi]).
+void write_vertex_coloured(const std::string& path, const TriMesh& surface, const std::vector<double>& value, double lo,
+                           double hi, bool ascii);
+
+/// |div| per vertex of a divergence metric and its 99th percentile (the
+/// colour scale of divergence.ply: a few spikes at cone points do not wash
+/// out the rest).
+std::pair<std::vector<double>, double> divergence_magnitude(const std::vector<double>& divergence);
 
 /// The stitch mesh as triangles with one colour per stitch (viridis of
 /// `value` over [0, hi]), for viewing (distortion.ply, shape_error.ply).

@@ -57,15 +57,6 @@ MirrorPlane parse_mirror(const std::string& text, double scale) {
   return {Vec3(v[0], v[1], v[2]), v[3] * scale};
 }
 
-/// Per-vertex values as colours on the surface (viridis over [lo, hi]).
-void write_vertex_coloured(const std::string& path, const TriMesh& surface, const std::vector<double>& value, double lo,
-                           double hi, bool ascii) {
-  MeshWriteOptions w;
-  w.ascii = ascii;
-  for (const Rgb8& c : scalar_colours(value, lo, hi > lo ? hi : lo + 1)) w.vertex_colours.push_back({c[0], c[1], c[2]});
-  write_mesh(path, surface, w);
-}
-
 /// The same colours as a picture (640 x 480, framed as `knitforge render`
 /// frames a mesh; both sides drawn).
 void write_vertex_coloured_png(const std::string& path, const TriMesh& surface, const std::vector<double>& value,
@@ -371,11 +362,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
         for (double x : f) lo = std::min(lo, x), hi = std::max(hi, x);
         write_vertex_coloured(out("field.ply"), surface, f, lo, hi, o->ascii);
         write_vertex_field(out("field.txt"), f);
-        std::vector<double> mag(d.metric.divergence.size());
-        for (size_t i = 0; i < mag.size(); ++i) mag[i] = std::abs(d.metric.divergence[i]);
-        std::vector<double> sorted = mag;
-        std::sort(sorted.begin(), sorted.end());
-        const double p99 = sorted.empty() ? 1.0 : sorted[static_cast<size_t>(0.99 * (sorted.size() - 1))];
+        const auto [mag, p99] = divergence_magnitude(d.metric.divergence);
         write_vertex_coloured(out("divergence.ply"), surface, mag, 0.0, p99, o->ascii);
         write_vertex_coloured_png(out("field.png"), surface, f, lo, hi);
         write_vertex_coloured_png(out("divergence.png"), surface, mag, 0.0, p99);

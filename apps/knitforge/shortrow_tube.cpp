@@ -67,6 +67,8 @@ int run_tube_design(const TubeCommandOptions& o) {
     w.ascii = o.ascii;
     for (const Rgb8& c : scalar_colours(d.field.value, 0.0, 1.0)) w.vertex_colours.push_back({c[0], c[1], c[2]});
     write_mesh(out("field.ply"), field_mesh, w);
+    const auto [mag, p99] = divergence_magnitude(d.divergence.divergence);
+    write_vertex_coloured(out("divergence.ply"), field_mesh, mag, 0.0, p99, o.ascii);
     MeshWriteOptions plain;
     plain.ascii = o.ascii;
     write_mesh(out("target.ply"), input, plain);
@@ -90,7 +92,14 @@ int run_tube_design(const TubeCommandOptions& o) {
                      {"start_rim_mm", d.field.start_length},
                      {"end_rim_mm", d.field.end_length},
                      {"interior_extrema", d.field.interior_extrema},
-                     {"mean_rim_to_rim_mm", d.levels.mean_length}};
+                     {"mean_rim_to_rim_mm", d.levels.mean_length},
+                     {"divergence",
+                      {{"of", "the normalised gradient (seed 3.3.8), on the surface the field lives on"},
+                       {"metric_mm", d.divergence.total},
+                       {"per_area_per_mm", d.divergence.normalised()},
+                       {"shaping_stitches_estimate", d.divergence.transfer_estimate(params.stitch_width)},
+                       {"shaping_stitches_designed", d.increases + d.decreases},
+                       {"flat_faces", d.divergence.flat_faces}}}};
   report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
                       {"quads", types[static_cast<int>(StitchType::Knit)]},
                       {"increases", d.increases},
@@ -153,6 +162,9 @@ int run_tube_design(const TubeCommandOptions& o) {
                    100.0 * (d.stitch_mesh.num_stitches() / expected - 1.0),
                    d.course_spacing.inside.min, d.course_spacing.inside.max, d.course_spacing.outside.min,
                    d.course_spacing.outside.max, d.course_spacing.all.taller, d.course_spacing.all.stitches, d.bend_ratio));
+  note(fmt::format("tube: divergence of the field's normalised gradient {:.0f} mm: about {:.0f} shaping stitches "
+                   "(estimate; {} increases + decreases designed) -> divergence.ply",
+                   d.divergence.total, d.divergence.transfer_estimate(params.stitch_width), d.increases + d.decreases));
   if (closed_end)
     note(fmt::format("tube: closed at the crown: last round {} stitches ({} pairs joined across the beds and bound "
                      "off), crown {:.1f} mm from the rim, a cap of {:.0f} mm^2 (radius {:.1f} mm) gathered by the "

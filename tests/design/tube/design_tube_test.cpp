@@ -138,5 +138,31 @@ TEST(DesignTube, NarrowingTubeStartsAtTheLongerRimWhicheverLoopComesFirst) {
   EXPECT_GT(d.decreases, 30);
 }
 
+// The divergence of the normalised gradient (seed §3.3.8) estimates the
+// shaping: on a frustum from r 50 to 30 mm the round loses 2π 20 / sw
+// stitches, and the estimate says so within 10 %; on a straight tube it is
+// near 0 (no shaping). The sheet routes' direction J g^ (along the
+// isocurves, circles here) is divergence-free on the frustum: it cannot
+// see the taper.
+TEST(DesignTube, DivergenceOfTheNormalisedGradientEstimatesTheDecreases) {
+  TriMesh frustum = open_tube(40.0, 120.0, 3.0);
+  for (Vec3& p : frustum.vertices) {
+    const double r = 50.0 - 20.0 * p.z() / 120.0, s = r / std::hypot(p.x(), p.y());
+    p.x() *= s;
+    p.y() *= s;
+  }
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const TubeDesign d = design_tube(frustum, o);
+  const double expected = 2.0 * std::numbers::pi * 20.0 / 3.5;  // 35.9 stitches
+  EXPECT_NEAR(d.divergence.transfer_estimate(3.5), expected, 0.1 * expected);
+  EXPECT_NEAR(d.increases + d.decreases, expected, 0.1 * expected);
+  EXPECT_EQ(d.divergence.flat_faces, 0);
+  DivergenceOptions across;  // the isocurve direction: circles do not spread
+  EXPECT_LT(divergence_metric(frustum, d.field.value, across).transfer_estimate(3.5), 0.1 * expected);
+  const TubeDesign straight = design_tube(open_tube(40.0, 120.0, 3.0), o);
+  EXPECT_LT(straight.divergence.transfer_estimate(3.5), 0.05 * expected);
+}
+
 }  // namespace
 }  // namespace knitforge

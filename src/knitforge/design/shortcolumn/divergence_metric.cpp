@@ -77,7 +77,7 @@ void DivergenceOperator::face_directions(const std::vector<double>& field, std::
       ++flat;
       continue;
     }
-    v[f] = normal_[f].cross(g) / len;
+    v[f] = options_.along_gradient ? Vec3(g / len) : Vec3(normal_[f].cross(g) / len);
   }
 }
 

@@ -38,6 +38,12 @@
 /// counts). A geodesic distance field has div J g^ = 0 (eq. 3.4): no short
 /// columns.
 ///
+/// Tubes (DivergenceOptions::along_gradient, seed §3.3.8): v = g^, the wale
+/// direction of a tube whose rounds are the isocurves; on a cone of radius
+/// r(s) along the axis, div g^ = r'/r, its integral 2π |Δr|, and the
+/// estimate 2π |Δr| / sw the change of the round's stitch count: the
+/// increases plus decreases.
+///
 /// Vanishing gradients: where |g| <= gradient_epsilon x (range of f) /
 /// (bounding-box diagonal), v is undefined; such faces contribute 0 and are
 /// counted (DivergenceMetric::flat_faces).
@@ -55,6 +61,11 @@ struct DivergenceOptions {
   /// A face is "flat" (no direction) when |grad f| <= gradient_epsilon x
   /// (max f - min f) / (bounding-box diagonal) (see the file comment).
   double gradient_epsilon = 1e-9;
+  /// Measure v = g^ itself instead of J g^: the tube route's courses follow
+  /// the isocurves and its wales the gradient, so the divergence of the
+  /// normalised gradient estimates its increases and decreases (seed §3.3.8,
+  /// L1550; docs/tubes.md "Transfer estimate").
+  bool along_gradient = false;
 };
 
 /// The metric of one field.

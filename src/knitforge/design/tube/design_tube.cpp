@@ -35,6 +35,11 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   }
   const TriMesh& surface = closed_end ? d.cut_surface : surface0;
   d.field = tube_field(surface, options.surface_name);
+  {
+    DivergenceOptions dv;
+    dv.along_gradient = true;
+    d.divergence = divergence_metric(surface, d.field.value, dv);
+  }
   d.surface_area = total_area(surface0);
   d.seconds.field = t.seconds();
 

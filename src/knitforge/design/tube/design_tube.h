@@ -5,7 +5,8 @@
 /// stitch mesh whose courses are closed rounds -> a tubular knitting map.
 ///
 ///  1. field: the harmonic u, 0 on the start rim (the longer one), 1 on the
-///     other (tube_field.h); every level is one closed loop;
+///     other (tube_field.h); every level is one closed loop; the divergence
+///     of its normalised gradient estimates the shaping (seed §3.3.8);
 ///  2. rounds: levels one stitch height apart on average (round_levels()),
 ///     extracted as closed isocurves, oriented and started at the seam
 ///     (tube_rounds.h); with short rows (the default) on a bent tube: full
@@ -39,6 +40,7 @@
 #include "knitforge/core/knittability.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/design/shortcolumn/divergence_metric.h"
 #include "knitforge/design/tube/tessellate_rounds.h"
 #include "knitforge/design/tube/tube_field.h"
 #include "knitforge/design/tube/tube_rounds.h"
@@ -72,6 +74,10 @@ struct TubeTimings {
 /// Everything the route produces.
 struct TubeDesign {
   TubeField field;
+  /// Divergence of the field's normalised gradient on the surface it lives
+  /// on (DivergenceOptions::along_gradient, seed §3.3.8): its
+  /// transfer_estimate() is an ESTIMATE of increases + decreases.
+  DivergenceMetric divergence;
   RoundLevels levels;
   std::vector<RoundCurve> rounds;
   std::vector<int> round_stitches;  ///< per round (RoundsTessellation::stitches)
