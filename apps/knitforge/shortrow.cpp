@@ -198,6 +198,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
         t.mach = o->mach;
         t.short_rows = !o->no_tube_short_rows;
         t.crown_stitches = o->crown_stitches;
+        t.predict = o->predict;
+        t.no_evaluate = o->no_evaluate;
         return run_tube_design(t);
       }
       if (o->no_tube_short_rows)

@@ -127,6 +127,12 @@ int run_tube_design(const TubeCommandOptions& o) {
                               {"outside", side(d.course_spacing.outside)},
                               {"all", side(d.course_spacing.all)}};
   report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
+  // The converged predicted shape against the whole surface (a closed
+  // tube's crown cap included), as the sheet routes report it.
+  const std::vector<std::string> shape_notes =
+      knittable ? report_design_shape(report, o.predict, o.no_evaluate, o.outdir, d.stitch_mesh, params, input,
+                                      nullptr, o.ascii)
+                : std::vector<std::string>{};
   if (closed_end)
     report["closed_end"] = {{"crown_stitches", d.round_stitches.back()},
                             {"closing_pairs", static_cast<int>(closing_pairs(d.map).size())},
@@ -171,6 +177,7 @@ int run_tube_design(const TubeCommandOptions& o) {
                      "closing seam",
                      d.round_stitches.back(), closing_pairs(d.map).size(), d.rim_to_crown, d.crown_area,
                      d.crown_radius));
+  for (const std::string& line : shape_notes) note(line);
   if (!knittable) {
     const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;
     std::fprintf(stderr, "%s", r.text().c_str());

@@ -15,6 +15,8 @@ struct TubeCommandOptions {
   bool short_rows = true;  ///< !--no-tube-short-rows
   int crown_stitches = 12;  ///< --crown-stitches (a closed tube: one boundary loop)
   DesignMachineOptions mach;
+  DesignPredictOptions predict;  ///< the converged predicted shape (report_design_shape())
+  bool no_evaluate = false;      ///< --no-evaluate: no prediction unless --predict
 };
 
 /// Runs the tube route and writes its outputs; returns the exit code (0

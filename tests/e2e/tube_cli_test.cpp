@@ -1,4 +1,6 @@
 // shortrow --tube end to end: design, knitout, simulate (docs/tubes.md "Design").
+#include <nlohmann/json.hpp>
+
 #include "cli_fixture.h"
 
 namespace knitforge_e2e {
@@ -46,6 +48,16 @@ TEST_F(Cli, ShortrowTubeKnitsAStraightTubeWithoutShortRows) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("0 short rows (0 turns) in 0 wedges,"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(fs::path(out) / "knitting_map.csv").find(",-,"), std::string::npos);
+  // The converged predicted shape, as the sheet routes report it (648
+  // stitches: under the default limit): a straight tube knits straight.
+  EXPECT_NE(r.err.find("predicted shape error RMS 0."), std::string::npos) << r.err;
+  const auto report = nlohmann::json::parse(slurp(fs::path(out) / "report.json"));
+  EXPECT_TRUE(report["prediction"]["converged"].get<bool>()) << report["prediction"].dump();
+  EXPECT_LT(report["prediction"]["shape_error_mm"]["rms"].get<double>(), 1.0);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "predicted.ply"));
+  // the shaping estimate: 0 on a straight tube
+  EXPECT_NE(r.err.find("about 0 shaping stitches (estimate; 0 increases + decreases designed)"), std::string::npos)
+      << r.err;
 }
 
 // Closed tubes (docs/tubes.md "Closed tubes"): the beanie from its rim to
