@@ -201,6 +201,56 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
   }
   e.fabric = false;
 
+  // Moves one loop from (from_back, from) to (to_back, to) during the
+  // bind-off, when every loop rests on its wale's needle: front wales on
+  // needles of one parity, back wales on the other, so the front needles of
+  // the back wales' parity and the back needles of the front wales' parity
+  // are empty. Within the racking limit it is one transfer (to the other
+  // bed) or two (there and back, racked); further, the loop walks over
+  // those empty needles, a bed change per transfer, each within the limit.
+  // Returns the transfer passes.
+  const int max_rack = prof.max_racking;
+  const int front_parity = [&] {
+    for (int c = 0; c < h; ++c)
+      if (is_stitch(map.at(R - 1, c))) return ((N(R - 1, c)) % 2 + 2) % 2;
+    return 0;
+  }();
+  auto move_loop = [&](bool from_back, int from, bool to_back, int to) {
+    bool cur_back = from_back;
+    int cur = from, passes = 0;
+    auto hop = [&](bool next_back, int next) {
+      e.rack(cur_back ? next - cur : cur - next);  // back needle n faces front needle n + racking
+      e.xfer(cur_back, cur, next);
+      ++passes;
+      cur_back = next_back;
+      cur = next;
+    };
+    if (from_back == to_back && std::abs(to - from) <= max_rack) {
+      hop(!from_back, from);  // straight across, then back racked
+      hop(to_back, to);
+      return passes;
+    }
+    while (!(cur_back != to_back && std::abs(to - cur) <= max_rack)) {
+      if (max_rack < 1)
+        throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking; machine '{}' "
+                                       "does not rack; use --bind-off waste",
+                                       from_back ? 'b' : 'f', from, to_back ? 'b' : 'f', to, prof.name));
+      const bool next_back = !cur_back;
+      const int parity = next_back ? front_parity : 1 - front_parity;  // an empty needle there
+      const int d = to >= cur ? 1 : -1;
+      int k = std::min(max_rack, std::abs(to - cur));
+      if (((cur + d * k) % 2 + 2) % 2 != parity) --k;
+      if (k <= 0) k = ((cur + d) % 2 + 2) % 2 == parity ? 1 : 2;  // beside the target: step over it
+      if (k > max_rack)
+        throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking {}; machine "
+                                       "'{}' racks at most {}; use --bind-off waste",
+                                       from_back ? 'b' : 'f', from, to_back ? 'b' : 'f', to, k, prof.name, max_rack));
+      hop(next_back, cur + d * k);
+    }
+    hop(to_back, to);
+    return passes;
+  };
+
   // 5. bind-off
   const int last = R - 1;
   const int dl = map.direction[static_cast<size_t>(last)];
@@ -222,19 +272,9 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
                                      last));
     std::map<int, std::vector<std::pair<int, int>>> by_racking;  // racking -> {back needle, front needle}
     std::vector<std::pair<int, int>> far;  // pairs further apart than the machine racks
-    const int R = prof.max_racking;
     for (const auto& [f, b] : pairs) {
       const int nf = N(last, f), nb = N(last, b);
-      if (std::abs(nf - nb) <= R) {
-        by_racking[nf - nb].emplace_back(nb, nf);
-      } else if (R >= 2) {
-        far.emplace_back(nb, nf);
-      } else {
-        throw InvalidInput(fmt::format("tube knitout: the closing seam joins col {} (f{}) with col {} (b{}), which "
-                                       "needs racking {}; machine '{}' racks at most {}; balance the last round's "
-                                       "halves or leave the tube open",
-                                       f, nf, b, nb, nf - nb, prof.name, R));
-      }
+      (std::abs(nf - nb) <= max_rack ? by_racking[nf - nb] : far).emplace_back(nb, nf);
     }
     e.comment(fmt::format("bind-off: closing seam, {} back loops onto the front needles of their pairs", pairs.size()));
     e.settings(prof.writer.bind_off);
@@ -243,38 +283,11 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
       for (const auto& [nb, nf] : moves) e.xfer(true, nb, nf);
       ++st.transfer_passes;
     }
-    // A pair further apart than the racking limit: its back loop walks
-    // over, alternately onto a front needle of the back wales' parity and a
-    // back needle of the front wales' parity (both empty in the tube's
-    // layout), by at most the largest even / odd racking, then onto its
-    // pair's needle.
-    // the longest step within the racking limit and the distance left whose
-    // parity is `odd`
-    auto step = [&](int left, bool odd) {
-      int k = std::min(R, left);
-      if ((k % 2 == 1) != odd) --k;
-      return k;
-    };
+    // a pair further apart than the racking limit: the back loop walks over
     for (const auto& [nb, nf] : far) {
       e.comment(fmt::format("bind-off: closing seam, b{} walks to f{} ({} needles, racking <= {})", nb, nf,
-                            std::abs(nf - nb), R));
-      int cur = nb;  // on the back bed; its parity: the back wales' at first, then the front wales'
-      bool back_parity = true;
-      while (std::abs(nf - cur) > R) {
-        const int d = nf > cur ? 1 : -1;
-        const int m = cur + d * step(std::abs(nf - cur), !back_parity);  // a front needle of the back wales' parity
-        e.rack(m - cur);
-        e.xfer(true, cur, m);
-        const int next = m + d * step(std::abs(nf - m), true);  // a back needle of the front wales' parity
-        e.rack(m - next);
-        e.xfer(false, m, next);
-        st.transfer_passes += 2;
-        cur = next;
-        back_parity = false;
-      }
-      e.rack(nf - cur);
-      e.xfer(true, cur, nf);
-      ++st.transfer_passes;
+                            std::abs(nf - nb), max_rack));
+      st.transfer_passes += move_loop(true, nb, false, nf);
     }
     e.rack(0);
     // The carrier stands where the last round ended (its seam); it goes to
@@ -310,26 +323,12 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
     }
     for (size_t k = 0; k + 1 < chain.size(); ++k) {
       const Spot a = chain[k], b = chain[k + 1];
-      auto check = [&](int rk) {
-        if (std::abs(rk) > prof.max_racking)
-          throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking {}; machine "
-                                         "'{}' racks at most {}; balance the tube's halves or use --bind-off waste",
-                                         a.back ? 'b' : 'f', a.needle, b.back ? 'b' : 'f', b.needle, rk, prof.name,
-                                         prof.max_racking));
-        return rk;
-      };
-      if (a.back == b.back) {
-        e.rack(0);
-        e.xfer(a.back, a.needle, a.needle);
-        e.rack(check(a.back ? a.needle - b.needle : b.needle - a.needle));
-        e.xfer(!a.back, a.needle, b.needle);
-        st.transfer_passes += 2;
-      } else {
-        // across a fold: back needle nb faces front na at racking na - nb
-        e.rack(check(a.back ? b.needle - a.needle : a.needle - b.needle));
-        e.xfer(a.back, a.needle, b.needle);
-        ++st.transfer_passes;
-      }
+      // within a bed: to the other bed and back racked; across a fold: one
+      // transfer; beyond the racking limit: walked over empty needles
+      if (std::abs(a.needle - b.needle) > max_rack)
+        e.comment(fmt::format("bind-off: {}{} walks to {}{} ({} needles, racking <= {})", a.back ? 'b' : 'f',
+                              a.needle, b.back ? 'b' : 'f', b.needle, std::abs(a.needle - b.needle), max_rack));
+      st.transfer_passes += move_loop(a.back, a.needle, b.back, b.needle);
       e.rack(0);
       e.knit_on(b.dir, b.back, b.needle, M);
     }

@@ -32,14 +32,17 @@
 ///     each loop is moved onto the next wale's needle round the tube (within
 ///     a bed by a transfer to the other bed and back racked by two needles,
 ///     across a fold by one transfer at the racking that aligns the two
-///     needles) and knitted there; the last loop knits a tail of tail_rows
+///     needles; a loop further away than the machine racks walks over the
+///     empty needles of the other parity, one bed change per transfer) and
+///     knitted there; the last loop knits a tail of tail_rows
 ///     stitches, the carrier goes out and the tail loop is dropped.
 ///     BindOff::Waste: the waste carrier knits bind_off_waste_rows rounds
 ///     over the live loops, goes out, and every loop is dropped.
 ///     A closed tube (KnittingMap::closed_end) ends with its closing seam
 ///     whatever the bind-off option: `; bind-off: closing seam`, every
 ///     back loop of the last round onto the front needle of its pair
-///     (closing_pairs(); one transfer pass per racking), a joining pass
+///     (closing_pairs(); one transfer pass per racking, a walk for a pair
+///     further apart than the machine racks), a joining pass
 ///     knitting each front needle through its two loops (the carrier first
 ///     misses to the nearer end of the front bed when the round ended
 ///     inside a bed), then the chain as above along the front bed, a tail.
@@ -60,7 +63,7 @@ struct TubeWriterSetup {
 /// The program of a tube (see the file comment), not yet verified.
 /// \throw InvalidInput when the tube layout has a problem (the message names
 ///        the cell), the tube needs more needles than the bed has, the
-///        bind-off or a closing pair would rack beyond the machine's limit,
+///        machine cannot rack at all where the bind-off must move a loop,
 ///        or a closed tube's last round has unequal halves.
 KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& profile,
                                   const KnitoutOptions& options, const TubeWriterSetup& setup);
