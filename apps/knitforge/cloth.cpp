@@ -15,6 +15,7 @@
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/png_image.h"
+#include "knitforge/io/read_gltf_animation.h"
 #include "knitforge/render/camera.h"
 #include "knitforge/render/raster_preview.h"
 #include "knitforge/report/report_html.h"
@@ -42,7 +43,43 @@ struct LoadedScene {
   std::vector<double> elbow_angle_deg;         // built-in arm: per frame
 };
 
-LoadedScene load_scene(const ClothScene& s) {
+// A glTF body: sampled at the frame times from the animation's first key
+// (scene.frames set to the animation's length when the scene has none).
+void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
+  GltfReadOptions go;
+  go.mesh_name = s.body_mesh_name;
+  go.animation = s.body_animation_name;
+  const GltfAnimatedMesh anim = read_gltf_animation(s.body_animation, go);
+  const double length = anim.end_s - anim.start_s;
+  const double fit = std::floor(length * s.frame_rate_hz + 1e-6);  // whole frames within the animation
+  if (!s.frames_given && length > 0) {
+    if (fit > 100000) {
+      throw InvalidInput(fmt::format("{}: body.animation {}: {:.4g} s at {} Hz are more than 100000 frames; set "
+                                     "\"frames\"",
+                                     s.where, s.body_animation, length, s.frame_rate_hz));
+    }
+    s.frames = std::max(1, static_cast<int>(fit));
+  }
+  const double run = s.frames / s.frame_rate_hz;
+  if (length > 0 && run > length + 1e-6) {
+    throw InvalidInput(fmt::format(
+        "{}: body.animation {}: the animation '{}' lasts {:.4g} s ({:.4g} to {:.4g} s); {} frames at {} Hz need "
+        "{:.4g} s: set \"frames\" to at most {} (or omit it), or lower frame_rate_hz",
+        s.where, s.body_animation, anim.animation_name, length, anim.start_s, anim.end_s, s.frames, s.frame_rate_hz,
+        run, fit));
+  }
+  check_cloth_work(L.garment.num_vertices(), s.frames, s.substeps, max_work);  // before the frames are made
+  const double scale = unit_scale(s.body_units);
+  L.body.faces = anim.faces;
+  for (int f = 0; f <= s.frames; ++f) {
+    std::vector<Vec3> p = gltf_positions_at(anim, anim.start_s + f / s.frame_rate_hz);
+    for (Vec3& x : p) x *= scale;
+    if (f == 0) L.body.vertices = p;
+    L.body_frames.push_back(std::move(p));
+  }
+}
+
+LoadedScene load_scene(ClothScene& s, double max_work) {
   LoadedScene L;
   if (s.builtin == "sleeve") {
     const SleeveMesh sleeve = arm_sleeve_mesh(s.arm);
@@ -73,6 +110,8 @@ LoadedScene load_scene(const ClothScene& s) {
   }
   if (!s.body_mesh.empty()) {
     L.body = load_surface(s.body_mesh, s.body_units);
+  } else if (!s.body_animation.empty()) {
+    load_gltf_body(s, L, max_work);
   } else {
     for (size_t k = 0; k < s.body_frames.size(); ++k) {
       TriMesh m = load_surface(s.body_frames[k], s.body_units);
@@ -172,9 +211,10 @@ void add_cloth_command(CLI::App& app, Action& action) {
                                        o->frames, scene.frames));
         }
         scene.frames = o->frames;
+        scene.frames_given = true;
       }
       if (o->substeps > 0) scene.substeps = o->substeps;
-      const LoadedScene L = load_scene(scene);
+      const LoadedScene L = load_scene(scene, o->max_work);  // a glTF body may set scene.frames
       check_cloth_work(L.garment.num_vertices(), scene.frames, scene.substeps, o->max_work);
 
       SimModelOptions mo;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -82,6 +83,39 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   const json rep = json::parse(slurp(path("out/report.json")));
   EXPECT_EQ(rep["command"], "cloth");
   EXPECT_FALSE(rep.contains("fields"));  // the page's metrics stay small
+
+  // The animation.glb drives a second run as its body (glTF input, morph
+  // targets): the run takes the animation's length (3 frames at 20 Hz) and
+  // its body moves as the first run's did.
+  write("again.json", R"({"garment": {"mesh": "out/frames/0000_garment.obj",
+                                      "course_axis": {"point": [0, 0, 0], "direction": [1, 0, 0]}},
+                          "body": {"animation": "out/animation.glb", "mesh_name": "body"},
+                          "frame_rate_hz": 20, "substeps": 1, "newton": {"max_iterations": 8}})");
+  const CliRun r2 = run("cloth " + path("again.json") + " -o " + path("again"));
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  const json c2 = json::parse(slurp(path("again/cloth.json")));
+  EXPECT_EQ(c2["scene"]["frames"], 3);
+  EXPECT_EQ(c2["setup"]["body_vertices"], nb);
+  auto obj_vertices = [&](const std::string& file) {
+    std::vector<double> v;
+    std::istringstream in(slurp(file));
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream l(line);
+      std::string tag;
+      double x, y, z;
+      if (l >> tag && tag == "v" && l >> x >> y >> z) v.insert(v.end(), {x, y, z});
+    }
+    return v;
+  };
+  for (const char* f : {"frames/0001_body.obj", "frames/0003_body.obj"}) {
+    const std::vector<double> a = obj_vertices(path("out/") + f), b = obj_vertices(path("again/") + f);
+    ASSERT_EQ(a.size(), b.size()) << f;
+    ASSERT_EQ(a.size(), 3u * static_cast<size_t>(nb));
+    double worst = 0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    EXPECT_LT(worst, 1e-3) << f;  // float32 in the file
+  }
+  EXPECT_GT(c2["result"]["min_distance_mm"].get<double>(), 0.0);
 }
 
 TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
@@ -105,6 +139,13 @@ TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("--max-work"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("out/cloth.json")));
+  // glTF bodies: a file that is not glTF, a mesh name the file lacks, a run longer than the animation.
+  write("sheet.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+  write("fake.glb", "glTF but not really");
+  write("gl.json", R"({"garment": {"mesh": "sheet.obj", "course_direction": [1, 0, 0]}, "body": {"animation": "fake.glb"}})");
+  r = run("cloth " + path("gl.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("fake.glb"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -49,6 +49,27 @@ TEST(ClothScene, ReadsAFileSceneWithPathsRelativeToIt) {
   EXPECT_EQ(t.attached, s.attached);
 }
 
+TEST(ClothScene, ReadsAGltfBodyAnimation) {
+  json j = file_scene();
+  j["body"] = json::parse(R"({"animation": "walk.glb", "mesh_name": "body", "animation_name": "walk", "units": "m"})");
+  j.erase("frames");
+  const ClothScene s = cloth_scene_from_json(j, "scene.json", "/data");
+  EXPECT_EQ(s.body_animation, "/data/walk.glb");
+  EXPECT_EQ(s.body_mesh_name, "body");
+  EXPECT_EQ(s.body_animation_name, "walk");
+  EXPECT_EQ(s.body_units, "m");
+  EXPECT_FALSE(s.frames_given);  // the CLI takes the animation's length
+  const ClothScene t = cloth_scene_from_json(cloth_scene_to_json(s), "again");
+  EXPECT_EQ(t.body_animation, s.body_animation);
+  EXPECT_EQ(t.body_mesh_name, "body");
+  EXPECT_EQ(t.body_animation_name, "walk");
+  EXPECT_TRUE(t.frames_given);
+  j["body"]["mesh"] = "x.obj";
+  EXPECT_NE(refusal(j).find("exactly one of \"mesh\""), std::string::npos);
+  j["body"] = json::parse(R"({"mesh": "x.obj", "mesh_name": "body"})");
+  EXPECT_NE(refusal(j).find("'body.mesh_name' goes with \"animation\""), std::string::npos);
+}
+
 TEST(ClothScene, BuiltinNeedsNoFile) {
   const ClothScene s = builtin_cloth_scene("sleeve");
   EXPECT_EQ(s.builtin, "sleeve");

@@ -162,14 +162,24 @@ void read_body(const Reader& r, const json& j, ClothScene& s) {
     } else if (key == "frames") {
       if (!value.is_array() || value.empty()) r.fail("body.frames", "must be a non-empty array of mesh files");
       for (size_t k = 0; k < value.size(); ++k) s.body_frames.push_back(r.path(value[k], fmt::format("body.frames[{}]", k)));
+    } else if (key == "animation") {
+      s.body_animation = r.path(value, "body.animation");
+    } else if (key == "mesh_name") {
+      s.body_mesh_name = r.string(value, "body.mesh_name");
+    } else if (key == "animation_name") {
+      s.body_animation_name = r.string(value, "body.animation_name");
     } else if (key == "units") {
       s.body_units = r.units(value, "body.units");
     } else {
-      r.unknown("body." + key, "mesh, frames, units");
+      r.unknown("body." + key, "mesh, frames, animation, mesh_name, animation_name, units");
     }
   }
-  if (s.body_mesh.empty() == s.body_frames.empty())
-    r.fail("body", "needs exactly one of \"mesh\" (a static body) and \"frames\" (one mesh per frame)");
+  if (int(!s.body_mesh.empty()) + int(!s.body_frames.empty()) + int(!s.body_animation.empty()) != 1) {
+    r.fail("body", "needs exactly one of \"mesh\" (a static body), \"frames\" (one mesh per frame) and "
+                   "\"animation\" (a .glb or .gltf with a morph-target or node animation)");
+  }
+  if (s.body_animation.empty() && (!s.body_mesh_name.empty() || !s.body_animation_name.empty()))
+    r.fail(s.body_mesh_name.empty() ? "body.animation_name" : "body.mesh_name", "goes with \"animation\" (a glTF file)");
 }
 
 }  // namespace
@@ -211,6 +221,7 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
       has_body = true;
     } else if (key == "frames") {
       s.frames = r.integer(value, key, 1, 100000);
+      s.frames_given = true;
     } else if (key == "frame_rate_hz") {
       s.frame_rate_hz = r.positive(value, key);
     } else if (key == "substeps") {
@@ -294,8 +305,14 @@ json cloth_scene_to_json(const ClothScene& s) {
     g["materials"] = mats;
     if (!s.face_materials.empty()) g["face_materials"] = s.face_materials;
     j["garment"] = g;
-    j["body"] = s.body_frames.empty() ? json{{"mesh", s.body_mesh}, {"units", s.body_units}}
-                                      : json{{"frames", s.body_frames}, {"units", s.body_units}};
+    if (!s.body_animation.empty()) {
+      j["body"] = {{"animation", s.body_animation}, {"units", s.body_units}};
+      if (!s.body_mesh_name.empty()) j["body"]["mesh_name"] = s.body_mesh_name;
+      if (!s.body_animation_name.empty()) j["body"]["animation_name"] = s.body_animation_name;
+    } else {
+      j["body"] = s.body_frames.empty() ? json{{"mesh", s.body_mesh}, {"units", s.body_units}}
+                                        : json{{"frames", s.body_frames}, {"units", s.body_units}};
+    }
     j["pin"] = s.pinned;
     j["attach"] = s.attached;
     j["attach_within_mm"] = s.attach_within_mm;

@@ -13,7 +13,9 @@
 ///                "material": "jersey.json" | {...},       // or
 ///                "materials": [...], "face_materials": [0, 1, ...]},
 ///    "body": {"mesh": "arm.obj"}                          // static, or
-///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},
+///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},  // or
+///    "body": {"animation": "walk.glb", "mesh_name": "body",   // glTF
+///             "animation_name": "walk", "units": "mm"},
 ///    "frames": 30, "frame_rate_hz": 30, "substeps": 2,
 ///    "friction": 0.5, "gravity_mm_s2": [0, 0, -9810],
 ///    "pin": [vertex, ...], "attach": [vertex, ...], "attach_within_mm": 0,
@@ -53,9 +55,14 @@ struct ClothScene {
   std::vector<KnitMaterial> materials{default_single_jersey()};
   std::vector<int> face_materials;  ///< empty (all materials[0]) or one per face
 
-  // The body (file scenes): one static mesh or frames + 1 meshes.
+  // The body (file scenes): one static mesh, frames + 1 meshes, or a glTF
+  // animation (io/read_gltf_animation.h) sampled at the frame times from
+  // its first key on; without "frames" the run lasts the animation.
   std::string body_mesh;
   std::vector<std::string> body_frames;
+  std::string body_animation;       ///< .glb / .gltf path (resolved)
+  std::string body_mesh_name;       ///< "" = every mesh node; else a node or mesh name
+  std::string body_animation_name;  ///< "" = the file's only animation
   std::string body_units = "mm";
 
   // Pins: held in place (world), attached (carried with the closest body
@@ -66,6 +73,7 @@ struct ClothScene {
 
   // The run.
   int frames = 30;
+  bool frames_given = false;  ///< "frames" was in the scene (else a glTF body sets it)
   double frame_rate_hz = 30.0;
   int substeps = 2;
   double friction = 0.5;
@@ -81,8 +89,8 @@ struct ClothScene {
 /// \throw InvalidInput naming `where` and the field for an unknown field, a
 ///        wrong type, a value out of range (frames 1..100000, frame rate
 ///        and substeps positive, friction >= 0, ...), a garment without a
-///        course direction, a body without a mesh, a frame list whose length
-///        is not frames + 1, a vertex index < 0, an unknown built-in name.
+///        course direction, a body without exactly one of mesh, frames and
+///        animation, a frame list whose length is not frames + 1, a vertex index < 0, an unknown built-in name.
 ClothScene cloth_scene_from_json(const nlohmann::json& j, const std::string& where, const std::string& base_dir = "");
 
 /// Reads a scene file. \throw IOError when it cannot be read or is not
