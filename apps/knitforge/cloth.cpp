@@ -1,8 +1,10 @@
 // knitforge cloth: a garment on a moving body by the fabric simulator
 // (docs/sim.md, "Garments on a moving body"): a scene file or a built-in
-// scene (a capsule arm bending inside a sleeve), written as an OBJ/PLY
+// scene (a capsule arm bending inside a sleeve, a capsule leg bending inside a
+// legging), written as an OBJ/PLY
 // sequence, an animated glTF, per-frame stress and sliding, and a report page.
 #include <algorithm>
+#include <functional>
 #include <filesystem>
 #include <limits>
 
@@ -22,6 +24,7 @@
 #include "knitforge/sim/cloth_scene.h"
 #include "knitforge/sim/contact_candidates.h"
 #include "knitforge/sim/kinematic_body.h"
+#include "knitforge/sim/leg_motion.h"
 #include "knitforge/sim/material_json.h"
 #include "knitforge/sim/simulate_cloth.h"
 #include "knitforge/util/timer.h"
@@ -40,7 +43,11 @@ struct LoadedScene {
   TriMesh body;
   std::vector<std::vector<Vec3>> body_frames;  // empty = static
   std::vector<int> pinned, attached;
-  std::vector<double> elbow_angle_deg;         // built-in arm: per frame
+  // Built-in scenes: the joint's angle per frame, its name in cloth.json
+  // ("elbow_angle_deg"), and the signed distance to the true capsules.
+  std::vector<double> joint_angle_deg;
+  std::string angle_key, clearance_key;
+  std::function<double(double angle_deg, const Vec3& x)> true_distance;
 };
 
 // A glTF body: sampled at the frame times from the animation's first key
@@ -81,16 +88,25 @@ void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
 
 LoadedScene load_scene(ClothScene& s, double max_work) {
   LoadedScene L;
-  if (s.builtin == "sleeve") {
-    const SleeveMesh sleeve = arm_sleeve_mesh(s.arm);
-    L.garment = sleeve.mesh;
-    L.course = sleeve.course_directions;
-    L.attached = sleeve.attached;
-    L.body = arm_body_mesh(s.arm, 0.0);
+  if (s.builtin == "sleeve" || s.builtin == "legging") {
+    const bool arm = s.builtin == "sleeve";
+    const SleeveMesh tube = arm ? arm_sleeve_mesh(s.arm) : legging_mesh(s.leg);
+    L.garment = tube.mesh;
+    L.course = tube.course_directions;
+    L.attached = tube.attached;
+    auto body = [&](double angle) { return arm ? arm_body_mesh(s.arm, angle) : leg_body_mesh(s.leg, angle); };
+    L.body = body(0.0);
     for (int f = 0; f <= s.frames; ++f) {
-      L.elbow_angle_deg.push_back(arm_elbow_angle_deg(s.arm, f, s.frames));
-      L.body_frames.push_back(arm_body_mesh(s.arm, L.elbow_angle_deg.back()).vertices);
+      L.joint_angle_deg.push_back(arm ? arm_elbow_angle_deg(s.arm, f, s.frames) : leg_knee_angle_deg(s.leg, f, s.frames));
+      L.body_frames.push_back(body(L.joint_angle_deg.back()).vertices);
     }
+    L.angle_key = arm ? "elbow_angle_deg" : "knee_angle_deg";
+    L.clearance_key = arm ? "min_arm_clearance_mm" : "min_leg_clearance_mm";
+    const ArmMotionParams a = s.arm;
+    const LegMotionParams l = s.leg;
+    L.true_distance = [arm, a, l](double angle, const Vec3& x) {
+      return arm ? arm_signed_distance(a, angle, x) : leg_signed_distance(l, angle, x);
+    };
     return L;
   }
   L.garment = load_surface(s.garment_mesh, s.garment_units);
@@ -175,7 +191,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "cloth",
       "A garment on a moving body by the fabric simulator (docs/sim.md): a scene file (docs/formats.md) or a "
-      "built-in scene (--builtin sleeve: a capsule arm bending at the elbow inside a knitted sleeve); writes the "
+      "built-in scene (--builtin sleeve: a capsule arm bending at the elbow inside a knitted sleeve; --builtin "
+      "legging: a capsule leg bending at the knee inside a knitted legging); writes the "
       "animation (OBJ/PLY sequence, animation.glb), per-frame stress and sliding, cloth.json and report.html");
   struct Opts {
     std::string scene, builtin, outdir;
@@ -185,7 +202,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md \"Cloth scene\")");
-  cmd->add_option("--builtin", o->builtin, "A built-in scene instead of a file: sleeve");
+  cmd->add_option("--builtin", o->builtin, "A built-in scene instead of a file: sleeve, legging");
   cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
   cmd->add_option("--frames", o->frames, "Frames to simulate (overrides the scene's)")->check(CLI::Range(1, 100000));
   cmd->add_option("--substeps", o->substeps, "Time steps per frame (overrides the scene's)")->check(CLI::Range(1, 1000));
@@ -265,14 +282,14 @@ void add_cloth_command(CLI::App& app, Action& action) {
       anim[1].faces = L.body.faces;
       std::vector<double> times;
       json frames = json::array(), fields = json::array();
-      // Built-in arm: the signed clearance of the free vertices to the true
+      // Built-in limbs: the signed clearance of the free vertices to the true
       // capsules (the engine's distances are unsigned, to the mesh).
       std::vector<char> held(model.num_vertices(), 0);
       for (int v : model.pinned) held[v] = 1;
-      auto arm_clearance = [&](const ClothFrame& f) {
+      auto true_clearance = [&](const ClothFrame& f) {
         double c = std::numeric_limits<double>::infinity();
         for (int v = 0; v < model.num_vertices(); ++v)
-          if (!held[v]) c = std::min(c, arm_signed_distance(scene.arm, L.elbow_angle_deg[f.frame], f.positions[v]));
+          if (!held[v]) c = std::min(c, L.true_distance(L.joint_angle_deg[f.frame], f.positions[v]));
         return c;
       };
       double min_clearance = std::numeric_limits<double>::infinity();
@@ -310,10 +327,10 @@ void add_cloth_command(CLI::App& app, Action& action) {
                    {"max_stress_kpa", smax},
                    {"max_sliding_mm", lmax},
                    {"seconds", newton_timings_json(f.seconds)}};
-        if (!L.elbow_angle_deg.empty()) {
-          fj["elbow_angle_deg"] = L.elbow_angle_deg[f.frame];
-          const double c = arm_clearance(f);
-          fj["min_arm_clearance_mm"] = c;
+        if (!L.joint_angle_deg.empty()) {
+          fj[L.angle_key] = L.joint_angle_deg[f.frame];
+          const double c = true_clearance(f);
+          fj[L.clearance_key] = c;
           min_clearance = std::min(min_clearance, c);
         }
         frames.push_back(fj);
@@ -374,12 +391,13 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"newton_iterations", r.newton_iterations},
                            {"steps", r.steps},
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
-                           {"min_arm_clearance_mm", finite_or_null(min_clearance)},
+                           {L.clearance_key.empty() ? "min_arm_clearance_mm" : L.clearance_key,
+                            finite_or_null(min_clearance)},
                            {"penetration",
                             "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
                             "all frames (> 0 by the barrier and collision-free steps, which keep every vertex on the "
-                            "side of the body it starts on); for the built-in arm, min_arm_clearance_mm is the "
-                            "smallest signed distance of a free vertex to the true capsules (negative inside; the "
+                            "side of the body it starts on); for the built-in arm (leg), min_arm_clearance_mm "
+                            "(min_leg_clearance_mm) is the smallest signed distance of a free vertex to the true capsules (negative inside; the "
                             "mesh is inscribed, so down to minus its chord sag)"},
                            {"max_stress_kpa", stress_top},
                            {"max_sliding_mm", sliding_top},

@@ -118,6 +118,26 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   EXPECT_GT(c2["result"]["min_distance_mm"].get<double>(), 0.0);
 }
 
+// The built-in legging, small: the knee angle per frame, the signed
+// clearance to the true leg, every output.
+TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
+  write("leg.json", R"({"builtin": "legging", "frames": 2, "frame_rate_hz": 20, "substeps": 2,
+    "newton": {"max_iterations": 6},
+    "leg": {"thigh_length_mm": 100, "shin_length_mm": 90, "thigh_radius_mm": 28, "shin_radius_mm": 24,
+            "body_edge_mm": 10, "legging_edge_mm": 8, "transition_mm": 30, "max_angle_deg": 40}})");
+  const CliRun r = run("cloth " + path("leg.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  ASSERT_EQ(c["frames"].size(), 3u);
+  EXPECT_EQ(c["scene"]["builtin"], "legging");
+  EXPECT_DOUBLE_EQ(c["scene"]["leg"]["thigh_length_mm"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(c["frames"][2]["knee_angle_deg"].get<double>(), 40.0);
+  EXPECT_GT(c["result"]["min_leg_clearance_mm"].get<double>(), -0.8);
+  EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+  for (const char* f : {"animation.glb", "frames/0002_garment.ply", "frames/0002_body.obj", "report.html"})
+    EXPECT_TRUE(fs::exists(path("out/") + f)) << f;
+}
+
 TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
   write("typo.json", R"({"builtin": "sleeve", "frame": 3})");
   CliRun r = run("cloth " + path("typo.json") + " -o " + path("out"));
@@ -146,6 +166,10 @@ TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
   r = run("cloth " + path("gl.json") + " -o " + path("out"));
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("fake.glb"), std::string::npos) << r.err;
+  write("legarm.json", R"({"builtin": "legging", "arm": {}})");
+  r = run("cloth " + path("legarm.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("'arm' is a parameter of the built-in sleeve"), std::string::npos) << r.err;
 }
 
 }  // namespace

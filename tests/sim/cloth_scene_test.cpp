@@ -122,7 +122,7 @@ TEST(ClothScene, RefusesBadInputsNamingTheField) {
   j = file_scene();
   j.erase("body");
   EXPECT_NE(refusal(j).find("'body' is missing"), std::string::npos);
-  EXPECT_NE(refusal(json::parse(R"({"builtin": "legging"})")).find("'legging' is not a built-in scene (known: sleeve)"),
+  EXPECT_NE(refusal(json::parse(R"({"builtin": "skirt"})")).find("'skirt' is not a built-in scene (known: sleeve, legging)"),
             std::string::npos);
   EXPECT_NE(refusal(json::parse(R"({"builtin": "sleeve", "garment": {}})")).find("brings its own garment"),
             std::string::npos);

@@ -77,39 +77,60 @@ struct Reader {
   }
 };
 
-void read_arm(const Reader& r, const json& j, ArmMotionParams& a) {
-  if (!j.is_object()) r.fail("arm", "must be an object of arm parameters");
-  struct Field {
-    const char* name;
-    double* value;
-  };
-  const Field fields[] = {{"upper_length_mm", &a.upper_length_mm}, {"forearm_length_mm", &a.forearm_length_mm},
-                          {"upper_radius_mm", &a.upper_radius_mm}, {"forearm_radius_mm", &a.forearm_radius_mm},
-                          {"max_angle_deg", &a.max_angle_deg},     {"body_edge_mm", &a.body_edge_mm},
-                          {"sleeve_edge_mm", &a.sleeve_edge_mm},   {"clearance_mm", &a.clearance_mm},
-                          {"sleeve_start_mm", &a.sleeve_start_mm}, {"wrist_margin_mm", &a.wrist_margin_mm},
-                          {"transition_mm", &a.transition_mm}};
+struct Field {
+  const char* name;
+  double* value;
+};
+
+std::vector<Field> arm_fields(ArmMotionParams& a) {
+  return {{"upper_length_mm", &a.upper_length_mm}, {"forearm_length_mm", &a.forearm_length_mm},
+          {"upper_radius_mm", &a.upper_radius_mm}, {"forearm_radius_mm", &a.forearm_radius_mm},
+          {"max_angle_deg", &a.max_angle_deg},     {"body_edge_mm", &a.body_edge_mm},
+          {"sleeve_edge_mm", &a.sleeve_edge_mm},   {"clearance_mm", &a.clearance_mm},
+          {"sleeve_start_mm", &a.sleeve_start_mm}, {"wrist_margin_mm", &a.wrist_margin_mm},
+          {"transition_mm", &a.transition_mm}};
+}
+
+std::vector<Field> leg_fields(LegMotionParams& l) {
+  return {{"thigh_length_mm", &l.thigh_length_mm}, {"shin_length_mm", &l.shin_length_mm},
+          {"thigh_radius_mm", &l.thigh_radius_mm}, {"shin_radius_mm", &l.shin_radius_mm},
+          {"max_angle_deg", &l.max_angle_deg},     {"body_edge_mm", &l.body_edge_mm},
+          {"legging_edge_mm", &l.legging_edge_mm}, {"clearance_mm", &l.clearance_mm},
+          {"waist_margin_mm", &l.waist_margin_mm}, {"ankle_margin_mm", &l.ankle_margin_mm},
+          {"transition_mm", &l.transition_mm}};
+}
+
+// The fields of a built-in limb ("arm" or "leg"), then `check` (the limb's
+// own checks, named with the scene).
+template <class Check>
+void read_limb(const Reader& r, const json& j, const std::string& what, const std::vector<Field>& fields,
+               Check check) {
+  if (!j.is_object()) r.fail(what, fmt::format("must be an object of {} parameters", what));
   for (const auto& [key, value] : j.items()) {
     bool found = false;
     for (const Field& f : fields) {
       if (key == f.name) {
-        *f.value = r.number(value, "arm." + key);
+        *f.value = r.number(value, what + "." + key);
         found = true;
       }
     }
     if (!found) {
       std::string known;
       for (const Field& f : fields) known += (known.empty() ? "" : ", ") + std::string(f.name);
-      r.unknown("arm." + key, known);
+      r.unknown(what + "." + key, known);
     }
   }
-  // The arm's own checks, named with the scene.
   try {
-    (void)arm_upper_vertex_count(a);
-    (void)arm_sleeve_mesh(a).mesh.num_vertices();
+    check();
   } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format("{}: 'arm': {}", r.where, e.what()));
+    throw InvalidInput(fmt::format("{}: '{}': {}", r.where, what, e.what()));
   }
+}
+
+json fields_json(const std::vector<Field>& fields) {
+  json j = json::object();
+  for (const Field& f : fields) j[f.name] = *f.value;
+  return j;
 }
 
 void read_garment(const Reader& r, const json& j, ClothScene& s) {
@@ -185,7 +206,7 @@ void read_body(const Reader& r, const json& j, ClothScene& s) {
 }  // namespace
 
 const std::vector<std::string>& builtin_cloth_scene_names() {
-  static const std::vector<std::string> names = {"sleeve"};
+  static const std::vector<std::string> names = {"sleeve", "legging"};
   return names;
 }
 
@@ -211,8 +232,14 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
   for (const auto& [key, value] : j.items()) {
     if (key == "builtin") continue;
     if (key == "arm") {
-      if (s.builtin.empty()) r.fail("arm", "is a parameter of the built-in sleeve (\"builtin\": \"sleeve\")");
-      read_arm(r, value, s.arm);
+      if (s.builtin != "sleeve") r.fail("arm", "is a parameter of the built-in sleeve (\"builtin\": \"sleeve\")");
+      read_limb(r, value, "arm", arm_fields(s.arm), [&] {
+        (void)arm_upper_vertex_count(s.arm);
+        (void)arm_sleeve_mesh(s.arm).mesh.num_vertices();
+      });
+    } else if (key == "leg") {
+      if (s.builtin != "legging") r.fail("leg", "is a parameter of the built-in legging (\"builtin\": \"legging\")");
+      read_limb(r, value, "leg", leg_fields(s.leg), [&] { (void)legging_mesh(s.leg).mesh.num_vertices(); });
     } else if (key == "garment") {
       read_garment(r, value, s);
       has_garment = true;
@@ -252,19 +279,19 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
       }
     } else {
       r.unknown(key,
-                "builtin, arm, garment, body, frames, frame_rate_hz, substeps, friction, gravity_mm_s2, pin, attach, "
+                "builtin, arm, leg, garment, body, frames, frame_rate_hz, substeps, friction, gravity_mm_s2, pin, attach, "
                 "attach_within_mm, contact_distance_mm, sliding_distance_mm, newton");
     }
   }
   if (s.builtin.empty()) {
-    if (!has_garment) r.fail("garment", "is missing (or name a built-in scene: \"builtin\": \"sleeve\")");
-    if (!has_body) r.fail("body", "is missing (a mesh, or one mesh per frame)");
+    if (!has_garment) r.fail("garment", "is missing (or name a built-in scene: \"builtin\": \"sleeve\" or \"legging\")");
+    if (!has_body) r.fail("body", "is missing (a mesh, one mesh per frame, or a glTF animation)");
     if (!s.body_frames.empty() && static_cast<int>(s.body_frames.size()) != s.frames + 1) {
       r.fail("body.frames", fmt::format("has {} meshes; a run of {} frames needs frames + 1 = {} (frame 0 is the start)",
                                         s.body_frames.size(), s.frames, s.frames + 1));
     }
   } else if (!s.pinned.empty() || !s.attached.empty()) {
-    r.fail(s.pinned.empty() ? "attach" : "pin", "is set by the built-in scene (its shoulder and cuff rings)");
+    r.fail(s.pinned.empty() ? "attach" : "pin", "is set by the built-in scene (its first and last rings)");
   }
   if (s.contact_distance_mm > 10) {
     r.fail("contact_distance_mm", fmt::format("{} mm is more than 10 mm; the barrier acts within this distance, "
@@ -286,13 +313,9 @@ json cloth_scene_to_json(const ClothScene& s) {
   json j;
   if (!s.builtin.empty()) {
     j["builtin"] = s.builtin;
-    const ArmMotionParams& a = s.arm;
-    j["arm"] = {{"upper_length_mm", a.upper_length_mm}, {"forearm_length_mm", a.forearm_length_mm},
-                {"upper_radius_mm", a.upper_radius_mm}, {"forearm_radius_mm", a.forearm_radius_mm},
-                {"max_angle_deg", a.max_angle_deg},     {"body_edge_mm", a.body_edge_mm},
-                {"sleeve_edge_mm", a.sleeve_edge_mm},   {"clearance_mm", a.clearance_mm},
-                {"sleeve_start_mm", a.sleeve_start_mm}, {"wrist_margin_mm", a.wrist_margin_mm},
-                {"transition_mm", a.transition_mm}};
+    ClothScene copy = s;  // the field tables point into it
+    if (s.builtin == "legging") j["leg"] = fields_json(leg_fields(copy.leg));
+    else j["arm"] = fields_json(arm_fields(copy.arm));
   } else {
     json g = {{"mesh", s.garment_mesh}, {"units", s.garment_units}};
     if (s.course_direction) g["course_direction"] = {s.course_direction->x(), s.course_direction->y(), s.course_direction->z()};

@@ -23,7 +23,8 @@
 ///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01}}
 ///
 /// or a built-in scene: {"builtin": "sleeve", "arm": {ArmMotionParams
-/// fields}, ...run fields} (arm_motion.h), which needs no file.
+/// fields}, ...run fields} (arm_motion.h) or {"builtin": "legging", "leg":
+/// {LegMotionParams fields}, ...} (leg_motion.h), which need no file.
 /// Paths are relative to the scene file's directory.
 
 #include <optional>
@@ -35,16 +36,18 @@
 #include "knitforge/geometry/vec.h"
 #include "knitforge/sim/arm_motion.h"
 #include "knitforge/sim/knit_material.h"
+#include "knitforge/sim/leg_motion.h"
 
 namespace knitforge {
 
-/// The built-in scene names ("sleeve").
+/// The built-in scene names ("sleeve", "legging").
 const std::vector<std::string>& builtin_cloth_scene_names();
 
 struct ClothScene {
   std::string where;    ///< the scene file, or "built-in NAME"
   std::string builtin;  ///< "" or a name of builtin_cloth_scene_names()
   ArmMotionParams arm;  ///< the built-in sleeve's arm
+  LegMotionParams leg;  ///< the built-in legging's leg
 
   // The garment (file scenes).
   std::string garment_mesh;    ///< path (resolved)
