@@ -424,18 +424,19 @@ void add_cloth_command(CLI::App& app, Action& action) {
       summary["frames"] = frames;
       write_report_json(out("cloth.json"), full, false);
       write_report_json(out("material.json"), material_to_json(model.materials[0]), false);
-      // The report page shows the last frame: the body as the "target" layer,
-      // the garment (coloured files above) as the "relaxed" layer.
+      // The report page: the body as the "target" layer, the garment as the
+      // "relaxed" layer, at the last frame; the page animates them from
+      // animation.glb (report_data()).
       write_mesh(out("target.ply"), b);
       g.vertices = r.frames.back().positions;
       write_mesh(out("relaxed.ply"), g);
       summary["seconds"]["write"] = write_timer.seconds();
       summary["seconds"]["total"] = all.seconds();
-      summary["report_page"] = "report.html shows the last frame (body = target layer, garment = relaxed layer); the "
-                               "animation is in animation.glb";
+      summary["report_page"] = "report.html plays the animation (animation.glb: body = target layer, garment = "
+                               "relaxed layer), opening at the last frame";
       write_report_json(out("report.json"), summary, o->json);
       ReportHtmlOptions ro;
-      ro.title = "cloth: " + scene.where + " (last frame)";
+      ro.title = "cloth: " + scene.where;
       write_report_html(o->outdir, ro);
       note(fmt::format("{} frames, {} steps, {} Newton iterations{}; closest distance to the body {:.3g} mm; "
                        "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
