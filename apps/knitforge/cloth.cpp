@@ -7,11 +7,14 @@
 #include <functional>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.h"
+#include "knitforge/convert/map_to_stitch_mesh.h"
+#include "knitforge/convert/relax_stitch_mesh.h"
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/io/gltf.h"
 #include "knitforge/geometry/mesh_measures.h"
@@ -48,7 +51,64 @@ struct LoadedScene {
   std::vector<double> joint_angle_deg;
   std::string angle_key, clearance_key;
   std::function<double(double angle_deg, const Vec3& x)> true_distance;
+  // A stitch-mesh garment: its model (rest shape = every stitch at its
+  // ideal size), and what it was made from.
+  std::optional<SimModel> stitch_model;
+  nlohmann::json garment_source;
 };
+
+// A stitch mesh (PLY or knitting map, relaxed as `relax` does) or a design
+// directory's stitch_mesh.ply, with the stitch size of the scene, else of the
+// design's report.json, else 3.5 x 2.8 mm; the model's triangles are the garment.
+void load_stitch_garment(const ClothScene& s, LoadedScene& L) {
+  std::string path = s.garment_stitch_mesh, stitch = s.garment_stitch_size, from = "scene";
+  if (!s.garment_design.empty()) {
+    path = (fs::path(s.garment_design) / "stitch_mesh.ply").string();
+    if (!fs::is_regular_file(path)) {
+      throw InvalidInput(fmt::format("{}: garment.design {}: not a design directory (no stitch_mesh.ply); give a "
+                                     "design command's output directory, or \"stitch_mesh\"",
+                                     s.where, s.garment_design));
+    }
+    const fs::path report = fs::path(s.garment_design) / "report.json";
+    if (stitch.empty() && fs::exists(report)) {
+      const json r = json::parse(read_text_file(report.string(), "design report"), nullptr, false);
+      if (r.is_object() && r.contains("parameters") && r["parameters"].is_object() &&
+          r["parameters"].contains("stitch_width_mm") && r["parameters"].contains("stitch_height_mm") &&
+          r["parameters"]["stitch_width_mm"].is_number() && r["parameters"]["stitch_height_mm"].is_number()) {
+        stitch = fmt::format("{}x{}", r["parameters"]["stitch_width_mm"].get<double>(),
+                             r["parameters"]["stitch_height_mm"].get<double>());
+        from = report.string();
+      }
+    }
+  }
+  if (stitch.empty()) {
+    stitch = "3.5x2.8";
+    from = "default";
+  }
+  KnitParams params;
+  try {
+    params = parse_stitch_size(stitch);
+  } catch (const Error& e) {
+    throw InvalidInput(fmt::format("{}: garment.stitch_size: {}", s.where, e.what()));
+  }
+  check_input_file(path);
+  const StitchInput in = load_stitch_input(path);
+  StitchMesh designed;
+  if (in.is_map) {
+    designed = relax_stitch_mesh(map_to_stitch_mesh_topology(in.map, params), params, RelaxOptions{}).mesh;
+  } else {
+    designed = in.mesh;
+  }
+  SimModelOptions mo;
+  mo.materials = s.materials;
+  L.stitch_model = build_sim_model(designed, params, mo);
+  L.garment = L.stitch_model->triangles();
+  L.garment_source = {{"stitch_mesh", path},
+                      {"stitches", designed.num_stitches()},
+                      {"stitch_width_mm", params.stitch_width},
+                      {"stitch_height_mm", params.stitch_height},
+                      {"stitch_size_from", from}};
+}
 
 // A glTF body: sampled at the frame times from the animation's first key
 // (scene.frames set to the animation's length when the scene has none).
@@ -109,13 +169,20 @@ LoadedScene load_scene(ClothScene& s, double max_work) {
     };
     return L;
   }
-  L.garment = load_surface(s.garment_mesh, s.garment_units);
+  if (s.garment_mesh.empty()) {
+    load_stitch_garment(s, L);
+  } else {
+    L.garment = load_surface(s.garment_mesh, s.garment_units);
+    L.garment_source = {{"mesh", s.garment_mesh}};
+  }
   const int nf = L.garment.num_faces(), nv = L.garment.num_vertices();
   if (!s.face_materials.empty() && static_cast<int>(s.face_materials.size()) != nf) {
     throw InvalidInput(fmt::format("{}: garment.face_materials has {} entries, the garment {} has {} faces", s.where,
                                    s.face_materials.size(), s.garment_mesh, nf));
   }
-  if (s.course_direction) {
+  if (L.stitch_model) {
+    // courses from the stitches
+  } else if (s.course_direction) {
     L.course = {*s.course_direction};
   } else {
     const auto& [point, dir] = *s.course_axis;
@@ -236,7 +303,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
 
       SimModelOptions mo;
       mo.materials = scene.materials;
-      SimModel model = build_sim_model(L.garment, L.course, scene.face_materials, mo);
+      SimModel model = L.stitch_model ? *L.stitch_model : build_sim_model(L.garment, L.course, scene.face_materials, mo);
       model.pinned = L.pinned;
       model.pinned.insert(model.pinned.end(), L.attached.begin(), L.attached.end());
       std::sort(model.pinned.begin(), model.pinned.end());
@@ -375,6 +442,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
       summary["scene"]["source"] = scene.where;
       summary["setup"] = {{"garment_vertices", model.num_vertices()},
                           {"garment_triangles", model.num_elements()},
+                          {"garment", L.garment_source},
                           {"body_vertices", L.body.num_vertices()},
                           {"body_triangles", L.body.num_faces()},
                           {"pinned", L.pinned.size()},

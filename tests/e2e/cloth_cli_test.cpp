@@ -138,6 +138,56 @@ TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
     EXPECT_TRUE(fs::exists(path("out/") + f)) << f;
 }
 
+// A stitch mesh as the garment (the cup of `relax`, a knitting map, a design
+// directory): the model's triangles are the garment (knit quads split in two,
+// shaping stitches one triangle), the courses and rest size are the stitches'.
+TEST_F(ClothCli, StitchMeshGarmentFallsOntoAPlate) {
+  ASSERT_EQ(run("sample-map cup -o " + path("map.csv")).code, 0);
+  ASSERT_EQ(run("relax " + path("map.csv") + " -o " + path("cup.ply")).code, 0);
+  write("plate.obj", "v -50 -50 -30\nv 200 -50 -30\nv 200 100 -30\nv -50 100 -30\nf 1 2 3\nf 1 3 4\n");
+  const std::string header = slurp(path("cup.ply")).substr(0, 400);
+  const size_t at = header.find("element vertex ");
+  ASSERT_NE(at, std::string::npos);
+  const int nv = std::stoi(header.substr(at + 15));
+  const std::string run_fields = R"(, "body": {"mesh": "plate.obj"}, "frames": 1, "substeps": 1, "newton": {"max_iterations": 4}})";
+  write("cup.json", R"({"garment": {"stitch_mesh": "cup.ply"})" + run_fields);
+  CliRun r = run("cloth " + path("cup.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  json c = json::parse(slurp(path("out/cloth.json")));
+  EXPECT_EQ(c["setup"]["garment_vertices"], nv);
+  EXPECT_EQ(c["setup"]["garment"]["stitches"], 1288);
+  EXPECT_EQ(c["setup"]["garment"]["stitch_size_from"], "default");
+  const int nt = c["setup"]["garment_triangles"].get<int>();
+  EXPECT_GT(nt, 1288);
+  EXPECT_LE(nt, 2 * 1288);
+  EXPECT_EQ(c["fields"][1]["stress_kpa"].size(), static_cast<size_t>(nt));
+  EXPECT_TRUE(fs::exists(path("out/frames/0001_garment.ply")));
+  // The map itself, relaxed on the way; then a design directory whose report.json gives the stitch size.
+  write("map.json", R"({"garment": {"stitch_mesh": "map.csv", "stitch_size": "3.5x2.8"})" + run_fields);
+  r = run("cloth " + path("map.json") + " -o " + path("out_map"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json::parse(slurp(path("out_map/cloth.json")))["setup"]["garment"]["stitches"], 1288);
+  fs::create_directories(path("design"));
+  fs::copy_file(path("cup.ply"), path("design/stitch_mesh.ply"));
+  write("design/report.json", R"({"parameters": {"stitch_width_mm": 4, "stitch_height_mm": 3}})");
+  write("design.json", R"({"garment": {"design": "design"})" + run_fields);
+  r = run("cloth " + path("design.json") + " -o " + path("out_design"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  c = json::parse(slurp(path("out_design/cloth.json")));
+  EXPECT_DOUBLE_EQ(c["setup"]["garment"]["stitch_width_mm"].get<double>(), 4.0);
+  EXPECT_NE(c["setup"]["garment"]["stitch_size_from"].get<std::string>().find("report.json"), std::string::npos);
+  // Refused: a directory without a stitch mesh, a course direction with a stitch mesh.
+  fs::create_directories(path("empty"));
+  write("empty.json", R"({"garment": {"design": "empty"})" + run_fields);
+  r = run("cloth " + path("empty.json") + " -o " + path("out_empty"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("not a design directory (no stitch_mesh.ply)"), std::string::npos) << r.err;
+  write("course.json", R"({"garment": {"stitch_mesh": "cup.ply", "course_direction": [1, 0, 0]})" + run_fields);
+  r = run("cloth " + path("course.json") + " -o " + path("out_course"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("a stitch mesh has its own courses"), std::string::npos) << r.err;
+}
+
 TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
   write("typo.json", R"({"builtin": "sleeve", "frame": 3})");
   CliRun r = run("cloth " + path("typo.json") + " -o " + path("out"));

@@ -138,6 +138,12 @@ void read_garment(const Reader& r, const json& j, ClothScene& s) {
   for (const auto& [key, value] : j.items()) {
     if (key == "mesh") {
       s.garment_mesh = r.path(value, "garment.mesh");
+    } else if (key == "stitch_mesh") {
+      s.garment_stitch_mesh = r.path(value, "garment.stitch_mesh");
+    } else if (key == "design") {
+      s.garment_design = r.path(value, "garment.design");
+    } else if (key == "stitch_size") {
+      s.garment_stitch_size = r.string(value, "garment.stitch_size");
     } else if (key == "units") {
       s.garment_units = r.units(value, "garment.units");
     } else if (key == "course_direction") {
@@ -161,12 +167,30 @@ void read_garment(const Reader& r, const json& j, ClothScene& s) {
     } else if (key == "face_materials") {
       s.face_materials = r.indices(value, "garment.face_materials");
     } else {
-      r.unknown("garment." + key, "mesh, units, course_direction, course_axis, material, materials, face_materials");
+      r.unknown("garment." + key,
+                "mesh, stitch_mesh, design, stitch_size, units, course_direction, course_axis, material, materials, "
+                "face_materials");
     }
   }
-  if (s.garment_mesh.empty()) r.fail("garment", "needs \"mesh\" (a triangle mesh file: .obj, .ply, .off, .stl)");
-  if (s.course_direction.has_value() == s.course_axis.has_value())
-    r.fail("garment", "needs exactly one of \"course_direction\" and \"course_axis\" (the knit's course direction)");
+  const int sources = int(!s.garment_mesh.empty()) + int(!s.garment_stitch_mesh.empty()) + int(!s.garment_design.empty());
+  if (sources != 1) {
+    r.fail("garment", "needs exactly one of \"mesh\" (a triangle mesh file: .obj, .ply, .off, .stl), "
+                      "\"stitch_mesh\" (a stitch mesh PLY or a knitting map) and \"design\" (a design command's "
+                      "output directory)");
+  }
+  if (s.garment_mesh.empty()) {  // a stitch mesh: its stitches give the courses, per-yarn materials
+    if (s.course_direction || s.course_axis)
+      r.fail(s.course_direction ? "garment.course_direction" : "garment.course_axis",
+             "is for a triangle-mesh garment; a stitch mesh has its own courses (remove it)");
+    if (!s.face_materials.empty())
+      r.fail("garment.face_materials", "is for a triangle-mesh garment; a stitch mesh's yarn y takes materials[y]");
+    if (s.garment_units != "mm") r.fail("garment.units", "must be mm for a stitch mesh (stitch meshes are in mm)");
+  } else {
+    if (!s.garment_stitch_size.empty())
+      r.fail("garment.stitch_size", "goes with \"stitch_mesh\" or \"design\" (the stitches' rest size)");
+    if (s.course_direction.has_value() == s.course_axis.has_value())
+      r.fail("garment", "needs exactly one of \"course_direction\" and \"course_axis\" (the knit's course direction)");
+  }
   for (size_t k = 0; k < s.face_materials.size(); ++k) {
     if (s.face_materials[k] >= static_cast<int>(s.materials.size())) {
       r.fail(fmt::format("garment.face_materials[{}]", k),
@@ -317,7 +341,11 @@ json cloth_scene_to_json(const ClothScene& s) {
     if (s.builtin == "legging") j["leg"] = fields_json(leg_fields(copy.leg));
     else j["arm"] = fields_json(arm_fields(copy.arm));
   } else {
-    json g = {{"mesh", s.garment_mesh}, {"units", s.garment_units}};
+    json g = {{"units", s.garment_units}};
+    if (!s.garment_mesh.empty()) g["mesh"] = s.garment_mesh;
+    if (!s.garment_stitch_mesh.empty()) g["stitch_mesh"] = s.garment_stitch_mesh;
+    if (!s.garment_design.empty()) g["design"] = s.garment_design;
+    if (!s.garment_stitch_size.empty()) g["stitch_size"] = s.garment_stitch_size;
     if (s.course_direction) g["course_direction"] = {s.course_direction->x(), s.course_direction->y(), s.course_direction->z()};
     if (s.course_axis) {
       const auto& [p, d] = *s.course_axis;

@@ -7,7 +7,9 @@
 /// values; the meshes it names are read by the caller (the CLI, with the
 /// readers of io/) and checked against the scene there (counts, indices).
 ///
-///   {"garment": {"mesh": "sleeve.obj", "units": "mm",
+///   {"garment": {"mesh": "sleeve.obj", "units": "mm",      // or
+///                "stitch_mesh": "relaxed.ply" | "design": "out/dir",
+///                "stitch_size": "3.5x2.8",  (stitch meshes: no course)
 ///                "course_direction": [0, 0, 1]            // or
 ///                "course_axis": {"point": [0,0,0], "direction": [1,0,0]},
 ///                "material": "jersey.json" | {...},       // or
@@ -49,8 +51,13 @@ struct ClothScene {
   ArmMotionParams arm;  ///< the built-in sleeve's arm
   LegMotionParams leg;  ///< the built-in legging's leg
 
-  // The garment (file scenes).
+  // The garment (file scenes): a triangle mesh with a course direction, or
+  // a stitch mesh (a PLY or map of `relax`, or a design directory's
+  // stitch_mesh.ply) whose stitches give the courses and rest shape.
   std::string garment_mesh;    ///< path (resolved)
+  std::string garment_stitch_mesh;  ///< path (resolved): a stitch mesh PLY or a knitting map
+  std::string garment_design;       ///< path (resolved): a design command's output directory
+  std::string garment_stitch_size;  ///< "WxH" mm; "" = the design's report.json, else 3.5x2.8
   std::string garment_units = "mm";  ///< mm, cm or m (the caller scales)
   std::optional<Vec3> course_direction;
   /// Courses round an axis (a tube): course = direction x (centroid - point).
