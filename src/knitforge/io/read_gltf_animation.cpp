@@ -400,7 +400,7 @@ json parse_file(const std::string& path, const std::string& data, std::string& b
     if (data.size() < 20) bad(0, "a .glb needs a 12-byte header and a JSON chunk; the file is cut short");
     const uint32_t version = u32_at(data, 4), length = u32_at(data, 8);
     if (version != 2) bad(4, fmt::format("GLB version {}; only glTF 2.0 is read (re-export as glTF 2.0)", version));
-    if (length > data.size())
+    if (length > data.size() || length < 20)
       bad(8, fmt::format("the header says {} bytes, the file has {} (cut short?)", length, data.size()));
     const uint32_t json_length = u32_at(data, 12), json_type = u32_at(data, 16);
     if (json_type != kChunkJson) bad(16, "the first chunk must be the JSON chunk");
@@ -896,9 +896,12 @@ std::vector<Vec3> gltf_positions_at(const GltfAnimatedMesh& m, double t) {
     const std::vector<double>& w = weights[static_cast<size_t>(part.node)];
     const Eigen::Matrix3d A = g.topLeftCorner<3, 3>();
     const Vec3 b = g.topRightCorner<3, 1>();
+    std::vector<size_t> active;  // targets with a weight (one of them for our own files)
+    for (size_t k = 0; k < part.targets.size() && k < w.size(); ++k)
+      if (w[k] != 0.0) active.push_back(k);
     for (size_t v = 0; v < part.base.size(); ++v) {
       Vec3 x = part.base[v];
-      for (size_t k = 0; k < part.targets.size() && k < w.size(); ++k) x += w[k] * part.targets[k][v];
+      for (size_t k : active) x += w[k] * part.targets[k][v];
       const Vec3 y = A * x + b;
       if (!y.allFinite()) {
         throw InvalidInput(fmt::format("{}: at {} s a vertex of nodes[{}] is not finite (the transforms overflow)",

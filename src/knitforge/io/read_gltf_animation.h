@@ -27,9 +27,9 @@
 /// and weights, as the specification allows. A file without an animation is
 /// a static body.
 ///
-/// **Refused, with what to do:** skinning (a node with "skin", or JOINTS_0
-/// / WEIGHTS_0 on a primitive: export the motion baked as shape keys /
-/// morph targets, or an OBJ per frame), any "extensionsRequired"
+/// **Refused, with what to do:** skinning (a chosen mesh node with a "skin":
+/// export the motion baked as shape keys / morph targets, or an OBJ per
+/// frame; JOINTS_0 / WEIGHTS_0 without a skin are ignored), any "extensionsRequired"
 /// (Draco, meshopt, quantization, ...), points and lines, animation
 /// channels on a "pointer" or unknown path, several animations without a
 /// name chosen, external buffers given by absolute path or a URL.
@@ -55,7 +55,8 @@ struct GltfReadOptions {
   /// "" = every mesh node of the scene; else the nodes whose name, or whose
   /// mesh's name, is this.
   std::string mesh_name;
-  /// "" = the file's only animation (none: a static mesh); else its name.
+  /// "" = the file's only animation (none: a static mesh); else its name,
+  /// or "#N" for the N-th (0-based) animation.
   std::string animation;
 };
 
