@@ -116,6 +116,17 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
     EXPECT_LT(worst, 1e-3) << f;  // float32 in the file
   }
   EXPECT_GT(c2["result"]["min_distance_mm"].get<double>(), 0.0);
+  // Longer than the animation: refused with the frames that fit; a mesh name the file lacks: its names.
+  CliRun r3 = run("cloth " + path("again.json") + " --frames 5 -o " + path("again5"));
+  EXPECT_NE(r3.code, 0);
+  EXPECT_NE(r3.err.find("set \"frames\" to at most 3"), std::string::npos) << r3.err;
+  write("noname.json", R"({"garment": {"mesh": "out/frames/0000_garment.obj", "course_direction": [0, 0, 1]},
+                           "body": {"animation": "out/animation.glb", "mesh_name": "arm"}})");
+  r3 = run("cloth " + path("noname.json") + " -o " + path("noname"));
+  EXPECT_NE(r3.code, 0);
+  EXPECT_NE(r3.err.find("no node or mesh of the scene is named 'arm' (names: 'body', 'garment')"), std::string::npos)
+      << r3.err;
+  EXPECT_FALSE(fs::exists(path("again5/cloth.json")));
 }
 
 // The built-in legging, small: the knee angle per frame, the signed
