@@ -237,6 +237,8 @@ try {
     { frame: window.knitforgeReport.view3d.animation.frame, frames: window.knitforgeReport.view3d.animation.frames });
   check(anim && anim.frames === 4 && anim.frame === 3, "the cloth page has the 4 frames, at the last", JSON.stringify(anim));
   check(await page.locator('[data-animation="play"]').isVisible(), "a play button is shown");
+  const layerText = await page.textContent("#layers");
+  check(/body/.test(layerText) && /garment/.test(layerText), "the layers are named body and garment", layerText);
   await settle();
   const shotLast = await view.screenshot({ path: path.join(art, "cloth-last.png") });
   await page.$eval('[data-animation="frame"]', (s) => { s.value = "0"; s.dispatchEvent(new Event("input")); });

@@ -294,18 +294,20 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     if (built.numStitches <= EDGE_STITCH_LIMIT) showEdges(layer, true);
   };
 
+  // A cloth run's layers are the body and the garment.
+  const cloth = !!(data.metrics && data.metrics.command === "cloth");
   if (data.target) {
     const mat = new THREE.MeshLambertMaterial({
       color: 0xb8bec6, side: THREE.DoubleSide, transparent: !!mainSm, opacity: mainSm ? 0.35 : 1, depthWrite: !mainSm,
     });
-    addLayer("target", "target surface", new THREE.Mesh(buildTriMesh(data.target, scale), mat), true);
+    addLayer("target", cloth ? "body" : "target surface", new THREE.Mesh(buildTriMesh(data.target, scale), mat), true);
   }
   if (sm) makeStitchLayer(sm, "stitch_mesh", "stitch mesh", true);
   if (data.relaxed) {
     if (relaxedStitch) makeStitchLayer(relaxedStitch, "relaxed", "relaxed", !sm);
     else {
       const mat = new THREE.MeshLambertMaterial({ color: 0x9fc5a8, side: THREE.DoubleSide });
-      addLayer("relaxed", "relaxed", new THREE.Mesh(buildTriMesh(data.relaxed, scale), mat), !sm);
+      addLayer("relaxed", cloth ? "garment" : "relaxed", new THREE.Mesh(buildTriMesh(data.relaxed, scale), mat), !sm);
     }
   }
   let yarnInfo = null;
