@@ -1,26 +1,33 @@
 // knitforge cloth: a garment on a moving body by the fabric simulator
 // (docs/sim.md, "Garments on a moving body"): a scene file or a built-in
-// scene (a capsule arm bending inside a sleeve), written as an OBJ/PLY
+// scene (a capsule arm bending inside a sleeve, a capsule leg bending inside a
+// legging), written as an OBJ/PLY
 // sequence, an animated glTF, per-frame stress and sliding, and a report page.
 #include <algorithm>
+#include <functional>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.h"
+#include "knitforge/convert/map_to_stitch_mesh.h"
+#include "knitforge/convert/relax_stitch_mesh.h"
 #include "knitforge/evaluate/scalar_colours.h"
 #include "knitforge/io/gltf.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/png_image.h"
+#include "knitforge/io/read_gltf_animation.h"
 #include "knitforge/render/camera.h"
 #include "knitforge/render/raster_preview.h"
 #include "knitforge/report/report_html.h"
 #include "knitforge/sim/cloth_scene.h"
 #include "knitforge/sim/contact_candidates.h"
 #include "knitforge/sim/kinematic_body.h"
+#include "knitforge/sim/leg_motion.h"
 #include "knitforge/sim/material_json.h"
 #include "knitforge/sim/simulate_cloth.h"
 #include "knitforge/util/timer.h"
@@ -39,30 +46,143 @@ struct LoadedScene {
   TriMesh body;
   std::vector<std::vector<Vec3>> body_frames;  // empty = static
   std::vector<int> pinned, attached;
-  std::vector<double> elbow_angle_deg;         // built-in arm: per frame
+  // Built-in scenes: the joint's angle per frame, its name in cloth.json
+  // ("elbow_angle_deg"), and the signed distance to the true capsules.
+  std::vector<double> joint_angle_deg;
+  std::string angle_key, clearance_key;
+  std::function<double(double angle_deg, const Vec3& x)> true_distance;
+  // A stitch-mesh garment: its model (rest shape = every stitch at its
+  // ideal size), and what it was made from.
+  std::optional<SimModel> stitch_model;
+  nlohmann::json garment_source;
 };
 
-LoadedScene load_scene(const ClothScene& s) {
-  LoadedScene L;
-  if (s.builtin == "sleeve") {
-    const SleeveMesh sleeve = arm_sleeve_mesh(s.arm);
-    L.garment = sleeve.mesh;
-    L.course = sleeve.course_directions;
-    L.attached = sleeve.attached;
-    L.body = arm_body_mesh(s.arm, 0.0);
-    for (int f = 0; f <= s.frames; ++f) {
-      L.elbow_angle_deg.push_back(arm_elbow_angle_deg(s.arm, f, s.frames));
-      L.body_frames.push_back(arm_body_mesh(s.arm, L.elbow_angle_deg.back()).vertices);
+// A stitch mesh (PLY or knitting map, relaxed as `relax` does) or a design
+// directory's stitch_mesh.ply, with the stitch size of the scene, else of the
+// design's report.json, else 3.5 x 2.8 mm; the model's triangles are the garment.
+void load_stitch_garment(const ClothScene& s, LoadedScene& L) {
+  std::string path = s.garment_stitch_mesh, stitch = s.garment_stitch_size, from = "scene";
+  if (!s.garment_design.empty()) {
+    path = (fs::path(s.garment_design) / "stitch_mesh.ply").string();
+    if (!fs::is_regular_file(path)) {
+      throw InvalidInput(fmt::format("{}: garment.design {}: not a design directory (no stitch_mesh.ply); give a "
+                                     "design command's output directory, or \"stitch_mesh\"",
+                                     s.where, s.garment_design));
     }
+    const fs::path report = fs::path(s.garment_design) / "report.json";
+    if (stitch.empty() && fs::exists(report)) {
+      const json r = json::parse(read_text_file(report.string(), "design report"), nullptr, false);
+      if (r.is_object() && r.contains("parameters") && r["parameters"].is_object() &&
+          r["parameters"].contains("stitch_width_mm") && r["parameters"].contains("stitch_height_mm") &&
+          r["parameters"]["stitch_width_mm"].is_number() && r["parameters"]["stitch_height_mm"].is_number()) {
+        stitch = fmt::format("{}x{}", r["parameters"]["stitch_width_mm"].get<double>(),
+                             r["parameters"]["stitch_height_mm"].get<double>());
+        from = report.string();
+      }
+    }
+  }
+  if (stitch.empty()) {
+    stitch = "3.5x2.8";
+    from = "default";
+  }
+  KnitParams params;
+  try {
+    params = parse_stitch_size(stitch);
+  } catch (const Error& e) {
+    throw InvalidInput(fmt::format("{}: garment.stitch_size: {}", s.where, e.what()));
+  }
+  check_input_file(path);
+  const StitchInput in = load_stitch_input(path);
+  StitchMesh designed;
+  if (in.is_map) {
+    designed = relax_stitch_mesh(map_to_stitch_mesh_topology(in.map, params), params, RelaxOptions{}).mesh;
+  } else {
+    designed = in.mesh;
+  }
+  SimModelOptions mo;
+  mo.materials = s.materials;
+  L.stitch_model = build_sim_model(designed, params, mo);
+  L.garment = L.stitch_model->triangles();
+  L.garment_source = {{"stitch_mesh", path},
+                      {"stitches", designed.num_stitches()},
+                      {"stitch_width_mm", params.stitch_width},
+                      {"stitch_height_mm", params.stitch_height},
+                      {"stitch_size_from", from}};
+}
+
+// A glTF body: sampled at the frame times from the animation's first key
+// (scene.frames set to the animation's length when the scene has none).
+void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
+  GltfReadOptions go;
+  go.mesh_name = s.body_mesh_name;
+  go.animation = s.body_animation_name;
+  const GltfAnimatedMesh anim = read_gltf_animation(s.body_animation, go);
+  const double length = anim.end_s - anim.start_s;
+  const double fit = std::floor(length * s.frame_rate_hz + 1e-6);  // whole frames within the animation
+  if (!s.frames_given && length > 0) {
+    if (fit > 100000) {
+      throw InvalidInput(fmt::format("{}: body.animation {}: {:.4g} s at {} Hz are more than 100000 frames; set "
+                                     "\"frames\"",
+                                     s.where, s.body_animation, length, s.frame_rate_hz));
+    }
+    s.frames = std::max(1, static_cast<int>(fit));
+  }
+  const double run = s.frames / s.frame_rate_hz;
+  if (length > 0 && run > length + 1e-6) {
+    throw InvalidInput(fmt::format(
+        "{}: body.animation {}: the animation '{}' lasts {:.4g} s ({:.4g} to {:.4g} s); {} frames at {} Hz need "
+        "{:.4g} s: set \"frames\" to at most {} (or omit it), or lower frame_rate_hz",
+        s.where, s.body_animation, anim.animation_name, length, anim.start_s, anim.end_s, s.frames, s.frame_rate_hz,
+        run, fit));
+  }
+  check_cloth_work(L.garment.num_vertices(), s.frames, s.substeps, max_work);  // before the frames are made
+  const double scale = unit_scale(s.body_units);
+  L.body.faces = anim.faces;
+  for (int f = 0; f <= s.frames; ++f) {
+    std::vector<Vec3> p = gltf_positions_at(anim, anim.start_s + f / s.frame_rate_hz);
+    for (Vec3& x : p) x *= scale;
+    if (f == 0) L.body.vertices = p;
+    L.body_frames.push_back(std::move(p));
+  }
+}
+
+LoadedScene load_scene(ClothScene& s, double max_work) {
+  LoadedScene L;
+  if (s.builtin == "sleeve" || s.builtin == "legging") {
+    const bool arm = s.builtin == "sleeve";
+    const SleeveMesh tube = arm ? arm_sleeve_mesh(s.arm) : legging_mesh(s.leg);
+    L.garment = tube.mesh;
+    L.course = tube.course_directions;
+    L.attached = tube.attached;
+    auto body = [&](double angle) { return arm ? arm_body_mesh(s.arm, angle) : leg_body_mesh(s.leg, angle); };
+    L.body = body(0.0);
+    for (int f = 0; f <= s.frames; ++f) {
+      L.joint_angle_deg.push_back(arm ? arm_elbow_angle_deg(s.arm, f, s.frames) : leg_knee_angle_deg(s.leg, f, s.frames));
+      L.body_frames.push_back(body(L.joint_angle_deg.back()).vertices);
+    }
+    L.angle_key = arm ? "elbow_angle_deg" : "knee_angle_deg";
+    L.clearance_key = arm ? "min_arm_clearance_mm" : "min_leg_clearance_mm";
+    const ArmMotionParams a = s.arm;
+    const LegMotionParams l = s.leg;
+    L.true_distance = [arm, a, l](double angle, const Vec3& x) {
+      return arm ? arm_signed_distance(a, angle, x) : leg_signed_distance(l, angle, x);
+    };
     return L;
   }
-  L.garment = load_surface(s.garment_mesh, s.garment_units);
+  if (s.garment_mesh.empty()) {
+    load_stitch_garment(s, L);
+  } else {
+    L.garment = load_surface(s.garment_mesh, s.garment_units);
+    L.garment_source = {{"mesh", s.garment_mesh}};
+  }
   const int nf = L.garment.num_faces(), nv = L.garment.num_vertices();
   if (!s.face_materials.empty() && static_cast<int>(s.face_materials.size()) != nf) {
     throw InvalidInput(fmt::format("{}: garment.face_materials has {} entries, the garment {} has {} faces", s.where,
                                    s.face_materials.size(), s.garment_mesh, nf));
   }
-  if (s.course_direction) {
+  if (L.stitch_model) {
+    // courses from the stitches
+  } else if (s.course_direction) {
     L.course = {*s.course_direction};
   } else {
     const auto& [point, dir] = *s.course_axis;
@@ -73,6 +193,8 @@ LoadedScene load_scene(const ClothScene& s) {
   }
   if (!s.body_mesh.empty()) {
     L.body = load_surface(s.body_mesh, s.body_units);
+  } else if (!s.body_animation.empty()) {
+    load_gltf_body(s, L, max_work);
   } else {
     for (size_t k = 0; k < s.body_frames.size(); ++k) {
       TriMesh m = load_surface(s.body_frames[k], s.body_units);
@@ -136,7 +258,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "cloth",
       "A garment on a moving body by the fabric simulator (docs/sim.md): a scene file (docs/formats.md) or a "
-      "built-in scene (--builtin sleeve: a capsule arm bending at the elbow inside a knitted sleeve); writes the "
+      "built-in scene (--builtin sleeve: a capsule arm bending at the elbow inside a knitted sleeve; --builtin "
+      "legging: a capsule leg bending at the knee inside a knitted legging); writes the "
       "animation (OBJ/PLY sequence, animation.glb), per-frame stress and sliding, cloth.json and report.html");
   struct Opts {
     std::string scene, builtin, outdir;
@@ -146,7 +269,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md \"Cloth scene\")");
-  cmd->add_option("--builtin", o->builtin, "A built-in scene instead of a file: sleeve");
+  cmd->add_option("--builtin", o->builtin, "A built-in scene instead of a file: sleeve, legging");
   cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
   cmd->add_option("--frames", o->frames, "Frames to simulate (overrides the scene's)")->check(CLI::Range(1, 100000));
   cmd->add_option("--substeps", o->substeps, "Time steps per frame (overrides the scene's)")->check(CLI::Range(1, 1000));
@@ -172,14 +295,15 @@ void add_cloth_command(CLI::App& app, Action& action) {
                                        o->frames, scene.frames));
         }
         scene.frames = o->frames;
+        scene.frames_given = true;
       }
       if (o->substeps > 0) scene.substeps = o->substeps;
-      const LoadedScene L = load_scene(scene);
+      const LoadedScene L = load_scene(scene, o->max_work);  // a glTF body may set scene.frames
       check_cloth_work(L.garment.num_vertices(), scene.frames, scene.substeps, o->max_work);
 
       SimModelOptions mo;
       mo.materials = scene.materials;
-      SimModel model = build_sim_model(L.garment, L.course, scene.face_materials, mo);
+      SimModel model = L.stitch_model ? *L.stitch_model : build_sim_model(L.garment, L.course, scene.face_materials, mo);
       model.pinned = L.pinned;
       model.pinned.insert(model.pinned.end(), L.attached.begin(), L.attached.end());
       std::sort(model.pinned.begin(), model.pinned.end());
@@ -225,14 +349,14 @@ void add_cloth_command(CLI::App& app, Action& action) {
       anim[1].faces = L.body.faces;
       std::vector<double> times;
       json frames = json::array(), fields = json::array();
-      // Built-in arm: the signed clearance of the free vertices to the true
+      // Built-in limbs: the signed clearance of the free vertices to the true
       // capsules (the engine's distances are unsigned, to the mesh).
       std::vector<char> held(model.num_vertices(), 0);
       for (int v : model.pinned) held[v] = 1;
-      auto arm_clearance = [&](const ClothFrame& f) {
+      auto true_clearance = [&](const ClothFrame& f) {
         double c = std::numeric_limits<double>::infinity();
         for (int v = 0; v < model.num_vertices(); ++v)
-          if (!held[v]) c = std::min(c, arm_signed_distance(scene.arm, L.elbow_angle_deg[f.frame], f.positions[v]));
+          if (!held[v]) c = std::min(c, L.true_distance(L.joint_angle_deg[f.frame], f.positions[v]));
         return c;
       };
       double min_clearance = std::numeric_limits<double>::infinity();
@@ -270,10 +394,10 @@ void add_cloth_command(CLI::App& app, Action& action) {
                    {"max_stress_kpa", smax},
                    {"max_sliding_mm", lmax},
                    {"seconds", newton_timings_json(f.seconds)}};
-        if (!L.elbow_angle_deg.empty()) {
-          fj["elbow_angle_deg"] = L.elbow_angle_deg[f.frame];
-          const double c = arm_clearance(f);
-          fj["min_arm_clearance_mm"] = c;
+        if (!L.joint_angle_deg.empty()) {
+          fj[L.angle_key] = L.joint_angle_deg[f.frame];
+          const double c = true_clearance(f);
+          fj[L.clearance_key] = c;
           min_clearance = std::min(min_clearance, c);
         }
         frames.push_back(fj);
@@ -318,6 +442,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
       summary["scene"]["source"] = scene.where;
       summary["setup"] = {{"garment_vertices", model.num_vertices()},
                           {"garment_triangles", model.num_elements()},
+                          {"garment", L.garment_source},
                           {"body_vertices", L.body.num_vertices()},
                           {"body_triangles", L.body.num_faces()},
                           {"pinned", L.pinned.size()},
@@ -334,12 +459,13 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"newton_iterations", r.newton_iterations},
                            {"steps", r.steps},
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
-                           {"min_arm_clearance_mm", finite_or_null(min_clearance)},
+                           {L.clearance_key.empty() ? "min_arm_clearance_mm" : L.clearance_key,
+                            finite_or_null(min_clearance)},
                            {"penetration",
                             "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
                             "all frames (> 0 by the barrier and collision-free steps, which keep every vertex on the "
-                            "side of the body it starts on); for the built-in arm, min_arm_clearance_mm is the "
-                            "smallest signed distance of a free vertex to the true capsules (negative inside; the "
+                            "side of the body it starts on); for the built-in arm (leg), min_arm_clearance_mm "
+                            "(min_leg_clearance_mm) is the smallest signed distance of a free vertex to the true capsules (negative inside; the "
                             "mesh is inscribed, so down to minus its chord sag)"},
                            {"max_stress_kpa", stress_top},
                            {"max_sliding_mm", sliding_top},
@@ -366,18 +492,19 @@ void add_cloth_command(CLI::App& app, Action& action) {
       summary["frames"] = frames;
       write_report_json(out("cloth.json"), full, false);
       write_report_json(out("material.json"), material_to_json(model.materials[0]), false);
-      // The report page shows the last frame: the body as the "target" layer,
-      // the garment (coloured files above) as the "relaxed" layer.
+      // The report page: the body as the "target" layer, the garment as the
+      // "relaxed" layer, at the last frame; the page animates them from
+      // animation.glb (report_data()).
       write_mesh(out("target.ply"), b);
       g.vertices = r.frames.back().positions;
       write_mesh(out("relaxed.ply"), g);
       summary["seconds"]["write"] = write_timer.seconds();
       summary["seconds"]["total"] = all.seconds();
-      summary["report_page"] = "report.html shows the last frame (body = target layer, garment = relaxed layer); the "
-                               "animation is in animation.glb";
+      summary["report_page"] = "report.html plays the animation (animation.glb: body = target layer, garment = "
+                               "relaxed layer), opening at the last frame";
       write_report_json(out("report.json"), summary, o->json);
       ReportHtmlOptions ro;
-      ro.title = "cloth: " + scene.where + " (last frame)";
+      ro.title = "cloth: " + scene.where;
       write_report_html(o->outdir, ro);
       note(fmt::format("{} frames, {} steps, {} Newton iterations{}; closest distance to the body {:.3g} mm; "
                        "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -82,6 +83,120 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   const json rep = json::parse(slurp(path("out/report.json")));
   EXPECT_EQ(rep["command"], "cloth");
   EXPECT_FALSE(rep.contains("fields"));  // the page's metrics stay small
+
+  // The animation.glb drives a second run as its body (glTF input, morph
+  // targets): the run takes the animation's length (3 frames at 20 Hz) and
+  // its body moves as the first run's did.
+  write("again.json", R"({"garment": {"mesh": "out/frames/0000_garment.obj",
+                                      "course_axis": {"point": [0, 0, 0], "direction": [1, 0, 0]}},
+                          "body": {"animation": "out/animation.glb", "mesh_name": "body"},
+                          "frame_rate_hz": 20, "substeps": 1, "newton": {"max_iterations": 8}})");
+  const CliRun r2 = run("cloth " + path("again.json") + " -o " + path("again"));
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  const json c2 = json::parse(slurp(path("again/cloth.json")));
+  EXPECT_EQ(c2["scene"]["frames"], 3);
+  EXPECT_EQ(c2["setup"]["body_vertices"], nb);
+  auto obj_vertices = [&](const std::string& file) {
+    std::vector<double> v;
+    std::istringstream in(slurp(file));
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream l(line);
+      std::string tag;
+      double x, y, z;
+      if (l >> tag && tag == "v" && l >> x >> y >> z) v.insert(v.end(), {x, y, z});
+    }
+    return v;
+  };
+  for (const char* f : {"frames/0001_body.obj", "frames/0003_body.obj"}) {
+    const std::vector<double> a = obj_vertices(path("out/") + f), b = obj_vertices(path("again/") + f);
+    ASSERT_EQ(a.size(), b.size()) << f;
+    ASSERT_EQ(a.size(), 3u * static_cast<size_t>(nb));
+    double worst = 0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    EXPECT_LT(worst, 1e-3) << f;  // float32 in the file
+  }
+  EXPECT_GT(c2["result"]["min_distance_mm"].get<double>(), 0.0);
+  // Longer than the animation: refused with the frames that fit; a mesh name the file lacks: its names.
+  CliRun r3 = run("cloth " + path("again.json") + " --frames 5 -o " + path("again5"));
+  EXPECT_NE(r3.code, 0);
+  EXPECT_NE(r3.err.find("set \"frames\" to at most 3"), std::string::npos) << r3.err;
+  write("noname.json", R"({"garment": {"mesh": "out/frames/0000_garment.obj", "course_direction": [0, 0, 1]},
+                           "body": {"animation": "out/animation.glb", "mesh_name": "arm"}})");
+  r3 = run("cloth " + path("noname.json") + " -o " + path("noname"));
+  EXPECT_NE(r3.code, 0);
+  EXPECT_NE(r3.err.find("no node or mesh of the scene is named 'arm' (names: 'body', 'garment')"), std::string::npos)
+      << r3.err;
+  EXPECT_FALSE(fs::exists(path("again5/cloth.json")));
+}
+
+// The built-in legging, small: the knee angle per frame, the signed
+// clearance to the true leg, every output.
+TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
+  write("leg.json", R"({"builtin": "legging", "frames": 2, "frame_rate_hz": 20, "substeps": 2,
+    "newton": {"max_iterations": 6},
+    "leg": {"thigh_length_mm": 100, "shin_length_mm": 90, "thigh_radius_mm": 28, "shin_radius_mm": 24,
+            "body_edge_mm": 10, "legging_edge_mm": 8, "transition_mm": 30, "max_angle_deg": 40}})");
+  const CliRun r = run("cloth " + path("leg.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  ASSERT_EQ(c["frames"].size(), 3u);
+  EXPECT_EQ(c["scene"]["builtin"], "legging");
+  EXPECT_DOUBLE_EQ(c["scene"]["leg"]["thigh_length_mm"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(c["frames"][2]["knee_angle_deg"].get<double>(), 40.0);
+  EXPECT_GT(c["result"]["min_leg_clearance_mm"].get<double>(), -0.8);
+  EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+  for (const char* f : {"animation.glb", "frames/0002_garment.ply", "frames/0002_body.obj", "report.html"})
+    EXPECT_TRUE(fs::exists(path("out/") + f)) << f;
+}
+
+// A stitch mesh as the garment (the cup of `relax`, a knitting map, a design
+// directory): the model's triangles are the garment (knit quads split in two,
+// shaping stitches one triangle), the courses and rest size are the stitches'.
+TEST_F(ClothCli, StitchMeshGarmentFallsOntoAPlate) {
+  ASSERT_EQ(run("sample-map cup -o " + path("map.csv")).code, 0);
+  ASSERT_EQ(run("relax " + path("map.csv") + " -o " + path("cup.ply")).code, 0);
+  write("plate.obj", "v -50 -50 -30\nv 200 -50 -30\nv 200 100 -30\nv -50 100 -30\nf 1 2 3\nf 1 3 4\n");
+  const std::string header = slurp(path("cup.ply")).substr(0, 400);
+  const size_t at = header.find("element vertex ");
+  ASSERT_NE(at, std::string::npos);
+  const int nv = std::stoi(header.substr(at + 15));
+  const std::string run_fields = R"(, "body": {"mesh": "plate.obj"}, "frames": 1, "substeps": 1, "newton": {"max_iterations": 4}})";
+  write("cup.json", R"({"garment": {"stitch_mesh": "cup.ply"})" + run_fields);
+  CliRun r = run("cloth " + path("cup.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  json c = json::parse(slurp(path("out/cloth.json")));
+  EXPECT_EQ(c["setup"]["garment_vertices"], nv);
+  EXPECT_EQ(c["setup"]["garment"]["stitches"], 1288);
+  EXPECT_EQ(c["setup"]["garment"]["stitch_size_from"], "default");
+  const int nt = c["setup"]["garment_triangles"].get<int>();
+  EXPECT_GT(nt, 1288);
+  EXPECT_LE(nt, 2 * 1288);
+  EXPECT_EQ(c["fields"][1]["stress_kpa"].size(), static_cast<size_t>(nt));
+  EXPECT_TRUE(fs::exists(path("out/frames/0001_garment.ply")));
+  // The map itself, relaxed on the way; then a design directory whose report.json gives the stitch size.
+  write("map.json", R"({"garment": {"stitch_mesh": "map.csv", "stitch_size": "3.5x2.8"})" + run_fields);
+  r = run("cloth " + path("map.json") + " -o " + path("out_map"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json::parse(slurp(path("out_map/cloth.json")))["setup"]["garment"]["stitches"], 1288);
+  fs::create_directories(path("design"));
+  fs::copy_file(path("cup.ply"), path("design/stitch_mesh.ply"));
+  write("design/report.json", R"({"parameters": {"stitch_width_mm": 4, "stitch_height_mm": 3}})");
+  write("design.json", R"({"garment": {"design": "design"})" + run_fields);
+  r = run("cloth " + path("design.json") + " -o " + path("out_design"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  c = json::parse(slurp(path("out_design/cloth.json")));
+  EXPECT_DOUBLE_EQ(c["setup"]["garment"]["stitch_width_mm"].get<double>(), 4.0);
+  EXPECT_NE(c["setup"]["garment"]["stitch_size_from"].get<std::string>().find("report.json"), std::string::npos);
+  // Refused: a directory without a stitch mesh, a course direction with a stitch mesh.
+  fs::create_directories(path("empty"));
+  write("empty.json", R"({"garment": {"design": "empty"})" + run_fields);
+  r = run("cloth " + path("empty.json") + " -o " + path("out_empty"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("not a design directory (no stitch_mesh.ply)"), std::string::npos) << r.err;
+  write("course.json", R"({"garment": {"stitch_mesh": "cup.ply", "course_direction": [1, 0, 0]})" + run_fields);
+  r = run("cloth " + path("course.json") + " -o " + path("out_course"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("a stitch mesh has its own courses"), std::string::npos) << r.err;
 }
 
 TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
@@ -105,6 +220,17 @@ TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("--max-work"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("out/cloth.json")));
+  // glTF bodies: a file that is not glTF, a mesh name the file lacks, a run longer than the animation.
+  write("sheet.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+  write("fake.glb", "glTF but not really");
+  write("gl.json", R"({"garment": {"mesh": "sheet.obj", "course_direction": [1, 0, 0]}, "body": {"animation": "fake.glb"}})");
+  r = run("cloth " + path("gl.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("fake.glb"), std::string::npos) << r.err;
+  write("legarm.json", R"({"builtin": "legging", "arm": {}})");
+  r = run("cloth " + path("legarm.json") + " -o " + path("out"));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("'arm' is a parameter of the built-in sleeve"), std::string::npos) << r.err;
 }
 
 }  // namespace

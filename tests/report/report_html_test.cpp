@@ -10,6 +10,7 @@
 #include "io/io_test_util.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/io/gltf.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/polyline_obj.h"
@@ -176,6 +177,57 @@ TEST(ReportHtml, RelaxedIsAStitchMeshOrAPlainMesh) {
   d = report_data(dir.path(""));
   EXPECT_EQ(d["relaxed"]["kind"], "stitch_mesh");
   EXPECT_EQ(d["relaxed"]["type"], json({0, 4}));
+}
+
+// A cloth run's animation.glb moves the relaxed layer (mesh "garment") and
+// the target layer (mesh "body"); long animations are thinned, keeping the last frame.
+TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
+  TempDir dir;
+  std::vector<AnimatedMesh> meshes(2);
+  meshes[0].name = "garment";
+  meshes[0].faces = {{0, 1, 2}};
+  meshes[1].name = "body";
+  meshes[1].faces = {{0, 1, 2}, {0, 2, 3}};
+  std::vector<double> times;
+  for (int k = 0; k < 5; ++k) {
+    times.push_back(0.1 * k);
+    meshes[0].frames.push_back({{0, 0, 1.0 * k}, {1, 0, 0}, {0, 1, 0}});
+    meshes[1].frames.push_back({{0, 0, -1}, {2, 0, -1}, {2, 2, -1.0 - k}, {0, 2, -1}});
+  }
+  write_animation_glb(dir.path("animation.glb"), meshes, times);
+  TriMesh g, b;
+  g.faces = meshes[0].faces;
+  g.vertices = meshes[0].frames.back();
+  b.faces = meshes[1].faces;
+  b.vertices = meshes[1].frames.back();
+  write_mesh(dir.path("relaxed.ply"), g);
+  write_mesh(dir.path("target.ply"), b);
+  json d = report_data(dir.path(""));
+  ASSERT_TRUE(d.contains("animation"));
+  const json& r = d["animation"]["layers"]["relaxed"];
+  ASSERT_EQ(r["frames"].size(), 5u);
+  EXPECT_EQ(r["frames"][3], json({0, 0, 300, 100, 0, 0, 0, 100, 0}));
+  EXPECT_NEAR(r["times"][4].get<double>(), 0.4, 1e-6);
+  EXPECT_EQ(d["animation"]["layers"]["target"]["frames"][2][8], -300);
+  ReportHtmlOptions o;
+  o.max_animation_values = 20;  // two frames of the body (12 values each)
+  d = report_data(dir.path(""), o);
+  const json& t = d["animation"]["layers"]["target"];
+  ASSERT_LE(t["frames"].size() * 12, 24u);
+  EXPECT_EQ(t["frames"].back()[8], -500);  // the last frame kept
+  EXPECT_NE(d["notes"].dump().find("shown every"), std::string::npos);
+  // A layer with other vertices is not animated (a note says so).
+  b.vertices.pop_back();
+  b.faces.pop_back();
+  write_mesh(dir.path("target.ply"), b);
+  d = report_data(dir.path(""));
+  EXPECT_FALSE(d["animation"]["layers"].contains("target"));
+  EXPECT_NE(d["notes"].dump().find("not animated"), std::string::npos);
+  // Design runs have no animation.glb and no note about it.
+  std::filesystem::remove(dir.path("animation.glb"));
+  d = report_data(dir.path(""));
+  EXPECT_FALSE(d.contains("animation"));
+  EXPECT_EQ(d["notes"].dump().find("animation"), std::string::npos);
 }
 
 TEST(ReportHtml, KnitoutStatistics) {

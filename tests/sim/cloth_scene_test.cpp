@@ -49,6 +49,49 @@ TEST(ClothScene, ReadsAFileSceneWithPathsRelativeToIt) {
   EXPECT_EQ(t.attached, s.attached);
 }
 
+TEST(ClothScene, ReadsAGltfBodyAnimation) {
+  json j = file_scene();
+  j["body"] = json::parse(R"({"animation": "walk.glb", "mesh_name": "body", "animation_name": "walk", "units": "m"})");
+  j.erase("frames");
+  const ClothScene s = cloth_scene_from_json(j, "scene.json", "/data");
+  EXPECT_EQ(s.body_animation, "/data/walk.glb");
+  EXPECT_EQ(s.body_mesh_name, "body");
+  EXPECT_EQ(s.body_animation_name, "walk");
+  EXPECT_EQ(s.body_units, "m");
+  EXPECT_FALSE(s.frames_given);  // the CLI takes the animation's length
+  const ClothScene t = cloth_scene_from_json(cloth_scene_to_json(s), "again");
+  EXPECT_EQ(t.body_animation, s.body_animation);
+  EXPECT_EQ(t.body_mesh_name, "body");
+  EXPECT_EQ(t.body_animation_name, "walk");
+  EXPECT_TRUE(t.frames_given);
+  j["body"]["mesh"] = "x.obj";
+  EXPECT_NE(refusal(j).find("exactly one of \"mesh\""), std::string::npos);
+  j["body"] = json::parse(R"({"mesh": "x.obj", "mesh_name": "body"})");
+  EXPECT_NE(refusal(j).find("'body.mesh_name' goes with \"animation\""), std::string::npos);
+}
+
+TEST(ClothScene, AStitchMeshGarmentBringsItsOwnCourses) {
+  json j = file_scene();
+  j["garment"] = json::parse(R"({"design": "out/cup", "stitch_size": "4x3"})");
+  const ClothScene s = cloth_scene_from_json(j, "scene.json", "/data");
+  EXPECT_EQ(s.garment_design, "/data/out/cup");
+  EXPECT_EQ(s.garment_stitch_size, "4x3");
+  EXPECT_TRUE(s.garment_mesh.empty());
+  const ClothScene t = cloth_scene_from_json(cloth_scene_to_json(s), "again");
+  EXPECT_EQ(t.garment_design, s.garment_design);
+  EXPECT_EQ(t.garment_stitch_size, "4x3");
+  j["garment"] = json::parse(R"({"stitch_mesh": "cup.ply", "mesh": "cup.obj"})");
+  EXPECT_NE(refusal(j).find("exactly one of \"mesh\""), std::string::npos);
+  j["garment"] = json::parse(R"({"stitch_mesh": "cup.ply", "course_axis": {"point": [0, 0, 0], "direction": [1, 0, 0]}})");
+  EXPECT_NE(refusal(j).find("'garment.course_axis' is for a triangle-mesh garment"), std::string::npos);
+  j["garment"] = json::parse(R"({"stitch_mesh": "cup.ply", "face_materials": [0]})");
+  EXPECT_NE(refusal(j).find("'garment.face_materials' is for a triangle-mesh garment"), std::string::npos);
+  j["garment"] = json::parse(R"({"stitch_mesh": "cup.ply", "units": "cm"})");
+  EXPECT_NE(refusal(j).find("'garment.units' must be mm for a stitch mesh"), std::string::npos);
+  j["garment"] = json::parse(R"({"mesh": "cup.obj", "course_direction": [1, 0, 0], "stitch_size": "4x3"})");
+  EXPECT_NE(refusal(j).find("'garment.stitch_size' goes with"), std::string::npos);
+}
+
 TEST(ClothScene, BuiltinNeedsNoFile) {
   const ClothScene s = builtin_cloth_scene("sleeve");
   EXPECT_EQ(s.builtin, "sleeve");
@@ -101,7 +144,7 @@ TEST(ClothScene, RefusesBadInputsNamingTheField) {
   j = file_scene();
   j.erase("body");
   EXPECT_NE(refusal(j).find("'body' is missing"), std::string::npos);
-  EXPECT_NE(refusal(json::parse(R"({"builtin": "legging"})")).find("'legging' is not a built-in scene (known: sleeve)"),
+  EXPECT_NE(refusal(json::parse(R"({"builtin": "skirt"})")).find("'skirt' is not a built-in scene (known: sleeve, legging)"),
             std::string::npos);
   EXPECT_NE(refusal(json::parse(R"({"builtin": "sleeve", "garment": {}})")).find("brings its own garment"),
             std::string::npos);

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "knitforge/sim/arm_motion.h"
+#include "knitforge/sim/leg_motion.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
@@ -102,6 +103,59 @@ void run_sleeve(bool check_inside) {
 // outside it. This found that the collision-free steps did not limit any
 // move (collision_free_step_test.cpp).
 TEST(SimulateCloth, SleeveOnABendingArmNeverEntersIt) { run_sleeve(true); }
+
+// The legging on a small leg bending at the knee (leg_motion.h): the run
+// finishes, the knee bends, the fabric over the front of the knee stretches,
+// and no free vertex enters the true capsules beyond the meshes' chord sag.
+TEST(SimulateCloth, LeggingOnABendingKneeNeverEntersIt) {
+  LegMotionParams p;
+  p.thigh_length_mm = 120;
+  p.shin_length_mm = 110;
+  p.thigh_radius_mm = 32;
+  p.shin_radius_mm = 27;
+  p.body_edge_mm = 9;
+  p.legging_edge_mm = 9;
+  p.transition_mm = 40;
+  p.max_angle_deg = 60;
+  const int frames = 4;
+  const SleeveMesh legging = legging_mesh(p);
+  SimModel model = build_sim_model(legging.mesh, legging.course_directions);
+  model.pinned = legging.attached;
+  std::vector<std::vector<Vec3>> poses;
+  std::vector<double> angles;
+  for (int f = 0; f <= frames; ++f) {
+    angles.push_back(leg_knee_angle_deg(p, f, frames));
+    poses.push_back(leg_body_mesh(p, angles.back()).vertices);
+  }
+  ClothOptions o;
+  o.frames = frames;
+  o.frame_rate_hz = 20;
+  o.substeps = 2;
+  o.newton.max_iterations = 8;
+  const ClothResult r = simulate_cloth(model, leg_body_mesh(p, 0), poses, legging.attached, o);
+  ASSERT_EQ(r.frames.size(), static_cast<size_t>(frames + 1));
+  EXPECT_DOUBLE_EQ(angles.back(), 60.0);
+  std::vector<char> held(model.num_vertices(), 0);
+  for (int v : legging.attached) held[v] = 1;
+  const double sag = 0.8;
+  for (const ClothFrame& f : r.frames) {
+    EXPECT_EQ(f.body, poses[f.frame]);
+    EXPECT_GT(f.min_distance_mm, 0.0);
+    for (int v = 0; v < model.num_vertices(); ++v) {
+      if (!held[v]) {
+        EXPECT_GT(leg_signed_distance(p, angles[f.frame], f.positions[v]), -sag) << "frame " << f.frame;
+      }
+    }
+  }
+  // The ankle cuff rode with the shin: back and up by the bend.
+  const Vec3 ankle0 = leg_ankle(p, 0), ankle = leg_ankle(p, 60);
+  EXPECT_GT(ankle.x() - ankle0.x(), 90.0);
+  for (int v : legging.cuff_ring) EXPECT_GT(r.frames.back().positions[v].x() - r.frames.front().positions[v].x(), 60.0);
+  double s0 = 0, s_end = 0;
+  for (double s : r.frames.front().stress_kpa) s0 = std::max(s0, s);
+  for (double s : r.frames.back().stress_kpa) s_end = std::max(s_end, s);
+  EXPECT_GT(s_end, s0);
+}
 
 // A flat square sheet of (n+1)² vertices, spacing d, at height z.
 TriMesh sheet(int n, double d, double z) {

@@ -9,7 +9,8 @@
 // the colour buttons and layer toggles change its pixels, the map canvas
 // shows and hovering a cell gives its course / wale / type, the metrics and
 // knitout panels are filled, and the page logs no error. Screenshots go to
-// <artifacts dir>/web_report/.
+// <artifacts dir>/web_report/. Then a small `cloth` run: the frame slider and
+// the play button move the sleeve and the arm (animation.glb).
 import { createRequire } from "node:module";
 import { execFileSync } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
@@ -220,6 +221,35 @@ try {
   check(hrefs.includes("knitout.k") && hrefs.includes("knitting_map.csv"), "download links for the program and the map", hrefs.join(", "));
   check(hrefs.every((h) => existsSync(path.join(design2, decodeURI(h)))), "every download link points at a file of the run");
   await page.screenshot({ path: path.join(art, "summary.png") });
+
+  // A cloth run (a small built-in sleeve): the page plays animation.glb; the
+  // frame slider moves the garment and the arm.
+  const cloth = path.join(art, "cloth");
+  writeFileSync(path.join(art, "sleeve.json"), JSON.stringify({
+    builtin: "sleeve", frames: 3, frame_rate_hz: 20, substeps: 1, newton: { max_iterations: 6 },
+    arm: { upper_length_mm: 110, forearm_length_mm: 100, upper_radius_mm: 30, forearm_radius_mm: 26,
+           body_edge_mm: 10, sleeve_edge_mm: 9, transition_mm: 40, max_angle_deg: 60 },
+  }));
+  run("cloth", path.join(art, "sleeve.json"), "-o", cloth);
+  await page.goto(pathToFileURL(path.join(cloth, "report.html")).href);
+  await page.waitForFunction(() => window.knitforgeReport && (window.knitforgeReport.ready || window.knitforgeReport.error), null, { timeout: 60000 });
+  const anim = await page.evaluate(() => window.knitforgeReport.view3d && window.knitforgeReport.view3d.animation &&
+    { frame: window.knitforgeReport.view3d.animation.frame, frames: window.knitforgeReport.view3d.animation.frames });
+  check(anim && anim.frames === 4 && anim.frame === 3, "the cloth page has the 4 frames, at the last", JSON.stringify(anim));
+  check(await page.locator('[data-animation="play"]').isVisible(), "a play button is shown");
+  const layerText = await page.textContent("#layers");
+  check(/body/.test(layerText) && /garment/.test(layerText), "the layers are named body and garment", layerText);
+  await settle();
+  const shotLast = await view.screenshot({ path: path.join(art, "cloth-last.png") });
+  await page.$eval('[data-animation="frame"]', (s) => { s.value = "0"; s.dispatchEvent(new Event("input")); });
+  await settle();
+  const shotFirst = await view.screenshot({ path: path.join(art, "cloth-first.png") });
+  const d5 = await analyse(shotLast, shotFirst);
+  check(d5.differ > 0.005 * d5.pixels, "the frame slider moves the arm and the sleeve", `${d5.differ} pixels differ`);
+  check(/frame 0 \/ 3/.test(await page.textContent('[data-animation="time"]')), "the frame and time are shown");
+  await page.click('[data-animation="play"]');
+  await page.waitForFunction(() => window.knitforgeReport.view3d.animation.frame === 3, null, { timeout: 10000 });
+  check(true, "play runs to the last frame");
 
   check(errors.length === 0, "no console errors, page errors or network requests", errors.join(" | "));
 } finally {

@@ -294,18 +294,20 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     if (built.numStitches <= EDGE_STITCH_LIMIT) showEdges(layer, true);
   };
 
+  // A cloth run's layers are the body and the garment.
+  const cloth = !!(data.metrics && data.metrics.command === "cloth");
   if (data.target) {
     const mat = new THREE.MeshLambertMaterial({
       color: 0xb8bec6, side: THREE.DoubleSide, transparent: !!mainSm, opacity: mainSm ? 0.35 : 1, depthWrite: !mainSm,
     });
-    addLayer("target", "target surface", new THREE.Mesh(buildTriMesh(data.target, scale), mat), true);
+    addLayer("target", cloth ? "body" : "target surface", new THREE.Mesh(buildTriMesh(data.target, scale), mat), true);
   }
   if (sm) makeStitchLayer(sm, "stitch_mesh", "stitch mesh", true);
   if (data.relaxed) {
     if (relaxedStitch) makeStitchLayer(relaxedStitch, "relaxed", "relaxed", !sm);
     else {
       const mat = new THREE.MeshLambertMaterial({ color: 0x9fc5a8, side: THREE.DoubleSide });
-      addLayer("relaxed", "relaxed", new THREE.Mesh(buildTriMesh(data.relaxed, scale), mat), !sm);
+      addLayer("relaxed", cloth ? "garment" : "relaxed", new THREE.Mesh(buildTriMesh(data.relaxed, scale), mat), !sm);
     }
   }
   let yarnInfo = null;
@@ -389,6 +391,80 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     label.append(cb, layer.label);
     layersEl.append(label);
   }
+  // The animation (cloth runs: animation.glb moves the garment and the body
+  // layers): a play button and a frame slider; the page opens at the last frame.
+  let animation = null;
+  const anim = data.animation && data.animation.layers;
+  const moving = [];
+  if (anim) {
+    for (const l of layers) {
+      const a = anim[l.id];
+      if (a && l.object.isMesh && a.frames.length) moving.push({ geometry: l.object.geometry, a });
+    }
+  }
+  if (moving.length) {
+    const times = moving[0].a.times;
+    const n = times.length;
+    const wrap = document.createElement("span");
+    wrap.className = "animation";
+    const play = document.createElement("button");
+    play.type = "button";
+    play.dataset.animation = "play";
+    play.textContent = "play";
+    const slider = document.createElement("input");
+    slider.type = "range";
+    slider.min = "0";
+    slider.max = String(n - 1);
+    slider.step = "1";
+    slider.value = String(n - 1);
+    slider.dataset.animation = "frame";
+    const label = document.createElement("span");
+    label.dataset.animation = "time";
+    const setFrame = (k) => {
+      k = Math.max(0, Math.min(n - 1, k | 0));
+      for (const m of moving) {
+        const f = m.a.frames[Math.min(k, m.a.frames.length - 1)];
+        const attr = m.geometry.getAttribute("position");
+        const arr = attr.array;
+        for (let i = 0; i < f.length; ++i) arr[i] = f[i] * scale;
+        attr.needsUpdate = true;
+        m.geometry.computeVertexNormals();
+      }
+      slider.value = String(k);
+      label.textContent = `frame ${k} / ${n - 1}, ${times[k].toFixed(3)} s`;
+      animation.frame = k;
+      render();
+    };
+    let timer = null;
+    const stop = () => {
+      if (timer) cancelAnimationFrame(timer);
+      timer = null;
+      play.textContent = "play";
+    };
+    const start = () => {
+      const t0 = performance.now();
+      const from = animation.frame >= n - 1 ? 0 : animation.frame;
+      const base = times[from];
+      const tick = () => {
+        const t = base + (performance.now() - t0) / 1000;
+        let k = from;
+        while (k + 1 < n && times[k + 1] <= t) ++k;
+        if (k !== animation.frame) setFrame(k);
+        if (k >= n - 1) { stop(); return; }
+        timer = requestAnimationFrame(tick);
+      };
+      play.textContent = "pause";
+      setFrame(from);
+      timer = requestAnimationFrame(tick);
+    };
+    play.addEventListener("click", () => (timer ? stop() : start()));
+    slider.addEventListener("input", () => { stop(); setFrame(Number(slider.value)); });
+    wrap.append(play, slider, label);
+    layersEl.append(wrap);
+    animation = { frame: n - 1, frames: n, setFrame };
+    label.textContent = `frame ${n - 1} / ${n - 1}, ${times[n - 1].toFixed(3)} s`;
+  }
+
   if (stitchLayers.length) {
     const label = document.createElement("label");
     const cb = document.createElement("input");
@@ -480,5 +556,6 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
   };
   return { render, setMode, measureRender, setLayer: (id, on) => {
     for (const l of layers) if (l.id === id) l.object.visible = on;
-  }, fit: () => { fit(); render(); }, mode: () => currentMode, yarnInfo, layers: layers.map((l) => l.id) };
+  }, fit: () => { fit(); render(); }, mode: () => currentMode, yarnInfo, layers: layers.map((l) => l.id),
+  animation };
 }

@@ -20,6 +20,7 @@
 #include "knitforge/io/mesh_io.h"
 #include "knitforge/io/ply_format.h"
 #include "knitforge/io/polyline_obj.h"
+#include "knitforge/io/read_gltf_animation.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/machine/knitout_parse.h"
 #include "knitforge/machine/knitout_simulate.h"
@@ -279,6 +280,56 @@ json read_metrics(const std::string& path) {
   }
 }
 
+/// The frames of animation.glb (what `cloth` writes: meshes "garment" and
+/// "body") for the layers they move: "relaxed" (the garment) and "target"
+/// (the body), each only when the layer has as many vertices. Frames beyond
+/// max_values in all are thinned (every k-th, and the last), with a note.
+json animation_json(const std::string& path, const json& data, const Quantizer& q, int64_t max_values,
+                    json& notes) {
+  struct Layer {
+    const char* mesh;
+    const char* layer;
+  };
+  json layers = json::object();
+  std::vector<double> times;
+  for (const Layer& l : {Layer{"garment", "relaxed"}, Layer{"body", "target"}}) {
+    if (!data.contains(l.layer) || !data[l.layer].contains("positions")) continue;
+    GltfReadOptions o;
+    o.mesh_name = l.mesh;
+    GltfAnimatedMesh m;
+    try {
+      m = read_gltf_animation(path, o);
+    } catch (const InvalidInput&) {
+      continue;  // no such mesh in the file
+    }
+    const size_t nv = data[l.layer]["positions"].size() / 3;
+    if (static_cast<size_t>(m.num_vertices) != nv || m.channels.empty()) {
+      notes.push_back(fmt::format("animation.glb: mesh '{}' has {} vertices, the {} layer {}: not animated",
+                                  l.mesh, m.num_vertices, l.layer, nv));
+      continue;
+    }
+    if (times.empty()) times = m.channels.front().times;
+    const size_t per_frame = 3 * nv, n = times.size();
+    size_t step = 1;
+    if (max_values > 0) {
+      while (per_frame * ((n + step - 1) / step) > static_cast<size_t>(max_values) && step < n) ++step;
+    }
+    if (step > 1) {
+      notes.push_back(fmt::format("animation.glb: {} frames of the {} shown every {} (the page's size)", n, l.mesh,
+                                  step));
+    }
+    json frames = json::array(), keep_times = json::array();
+    for (size_t k = 0; k < n; k += step) {
+      const size_t f = k + step >= n ? n - 1 : k;  // always the last frame
+      frames.push_back(q.positions(gltf_positions_at(m, times[f])));
+      keep_times.push_back(times[f]);
+      if (f == n - 1) break;
+    }
+    layers[l.layer] = {{"times", keep_times}, {"frames", std::move(frames)}};
+  }
+  return layers.empty() ? json() : json{{"layers", std::move(layers)}};
+}
+
 }  // namespace
 
 const std::vector<std::string>& report_input_files() {
@@ -344,6 +395,13 @@ json report_data(const std::string& outdir, const ReportHtmlOptions& options) {
                                   options.max_polyline_points, "yarn.obj", notes);
   }
   if (has("knitout.k", path)) data["knitout"] = knitout_json(path, options.simulate_knitout);
+  // The animation of `cloth` (not listed as missing elsewhere).
+  path = (fs::path(outdir) / "animation.glb").string();
+  if (fs::is_regular_file(path, ec)) {
+    files.push_back(json{{"name", "animation.glb"}, {"bytes", static_cast<uint64_t>(fs::file_size(path, ec))}});
+    json a = animation_json(path, data, Quantizer(options.quantum_mm, path), options.max_animation_values, notes);
+    if (!a.is_null()) data["animation"] = std::move(a);
+  }
 
   if (files.empty()) {
     std::string list;

@@ -54,6 +54,10 @@ struct ReportHtmlOptions {
   /// a note says so): a 100k-stitch design has over a million yarn points,
   /// which would make the page slow to open. <= 0 keeps every point.
   int64_t max_polyline_points = 250000;
+  /// The frames of animation.glb (see report_data()) hold at most this many
+  /// coordinates in all; more frames are thinned (every k-th and the last,
+  /// a note says so). <= 0 keeps every frame.
+  int64_t max_animation_values = 3000000;
 };
 
 /// The file names report_data() looks for, in the order listed above.
@@ -71,7 +75,13 @@ const std::vector<std::string>& report_input_files();
 ///    "relaxed": {"kind": "stitch_mesh", ...} or {"kind": "mesh", ...},
 ///    "map": {"rows", "cols", "cells": "KK.L...", "direction": [...], "yarn"},
 ///    "wales" / "yarn": {"names": [...], "polylines": [[int x3], ...]},
-///    "knitout": {"lines", "operations", ..., "simulation": {...}}}
+///    "knitout": {"lines", "operations", ..., "simulation": {...}},
+///    "animation": {"layers": {"relaxed" | "target":
+///                  {"times": [s], "frames": [[int x3], ...]}}}}
+/// "animation" comes from animation.glb (what `cloth` writes: its mesh
+/// "garment" moves the relaxed layer, "body" the target layer, each when
+/// the vertex counts agree; read by io/read_gltf_animation.h), sampled at
+/// its key times; absent without the file, and not listed as missing.
 /// A key is absent when its file is. Scalars are rounded to 5 significant
 /// digits of the field's largest magnitude; NaN becomes null.
 /// \throw IOError when `outdir` is not a directory, holds none of the files

@@ -77,39 +77,60 @@ struct Reader {
   }
 };
 
-void read_arm(const Reader& r, const json& j, ArmMotionParams& a) {
-  if (!j.is_object()) r.fail("arm", "must be an object of arm parameters");
-  struct Field {
-    const char* name;
-    double* value;
-  };
-  const Field fields[] = {{"upper_length_mm", &a.upper_length_mm}, {"forearm_length_mm", &a.forearm_length_mm},
-                          {"upper_radius_mm", &a.upper_radius_mm}, {"forearm_radius_mm", &a.forearm_radius_mm},
-                          {"max_angle_deg", &a.max_angle_deg},     {"body_edge_mm", &a.body_edge_mm},
-                          {"sleeve_edge_mm", &a.sleeve_edge_mm},   {"clearance_mm", &a.clearance_mm},
-                          {"sleeve_start_mm", &a.sleeve_start_mm}, {"wrist_margin_mm", &a.wrist_margin_mm},
-                          {"transition_mm", &a.transition_mm}};
+struct Field {
+  const char* name;
+  double* value;
+};
+
+std::vector<Field> arm_fields(ArmMotionParams& a) {
+  return {{"upper_length_mm", &a.upper_length_mm}, {"forearm_length_mm", &a.forearm_length_mm},
+          {"upper_radius_mm", &a.upper_radius_mm}, {"forearm_radius_mm", &a.forearm_radius_mm},
+          {"max_angle_deg", &a.max_angle_deg},     {"body_edge_mm", &a.body_edge_mm},
+          {"sleeve_edge_mm", &a.sleeve_edge_mm},   {"clearance_mm", &a.clearance_mm},
+          {"sleeve_start_mm", &a.sleeve_start_mm}, {"wrist_margin_mm", &a.wrist_margin_mm},
+          {"transition_mm", &a.transition_mm}};
+}
+
+std::vector<Field> leg_fields(LegMotionParams& l) {
+  return {{"thigh_length_mm", &l.thigh_length_mm}, {"shin_length_mm", &l.shin_length_mm},
+          {"thigh_radius_mm", &l.thigh_radius_mm}, {"shin_radius_mm", &l.shin_radius_mm},
+          {"max_angle_deg", &l.max_angle_deg},     {"body_edge_mm", &l.body_edge_mm},
+          {"legging_edge_mm", &l.legging_edge_mm}, {"clearance_mm", &l.clearance_mm},
+          {"waist_margin_mm", &l.waist_margin_mm}, {"ankle_margin_mm", &l.ankle_margin_mm},
+          {"transition_mm", &l.transition_mm}};
+}
+
+// The fields of a built-in limb ("arm" or "leg"), then `check` (the limb's
+// own checks, named with the scene).
+template <class Check>
+void read_limb(const Reader& r, const json& j, const std::string& what, const std::vector<Field>& fields,
+               Check check) {
+  if (!j.is_object()) r.fail(what, fmt::format("must be an object of {} parameters", what));
   for (const auto& [key, value] : j.items()) {
     bool found = false;
     for (const Field& f : fields) {
       if (key == f.name) {
-        *f.value = r.number(value, "arm." + key);
+        *f.value = r.number(value, what + "." + key);
         found = true;
       }
     }
     if (!found) {
       std::string known;
       for (const Field& f : fields) known += (known.empty() ? "" : ", ") + std::string(f.name);
-      r.unknown("arm." + key, known);
+      r.unknown(what + "." + key, known);
     }
   }
-  // The arm's own checks, named with the scene.
   try {
-    (void)arm_upper_vertex_count(a);
-    (void)arm_sleeve_mesh(a).mesh.num_vertices();
+    check();
   } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format("{}: 'arm': {}", r.where, e.what()));
+    throw InvalidInput(fmt::format("{}: '{}': {}", r.where, what, e.what()));
   }
+}
+
+json fields_json(const std::vector<Field>& fields) {
+  json j = json::object();
+  for (const Field& f : fields) j[f.name] = *f.value;
+  return j;
 }
 
 void read_garment(const Reader& r, const json& j, ClothScene& s) {
@@ -117,6 +138,12 @@ void read_garment(const Reader& r, const json& j, ClothScene& s) {
   for (const auto& [key, value] : j.items()) {
     if (key == "mesh") {
       s.garment_mesh = r.path(value, "garment.mesh");
+    } else if (key == "stitch_mesh") {
+      s.garment_stitch_mesh = r.path(value, "garment.stitch_mesh");
+    } else if (key == "design") {
+      s.garment_design = r.path(value, "garment.design");
+    } else if (key == "stitch_size") {
+      s.garment_stitch_size = r.string(value, "garment.stitch_size");
     } else if (key == "units") {
       s.garment_units = r.units(value, "garment.units");
     } else if (key == "course_direction") {
@@ -140,12 +167,30 @@ void read_garment(const Reader& r, const json& j, ClothScene& s) {
     } else if (key == "face_materials") {
       s.face_materials = r.indices(value, "garment.face_materials");
     } else {
-      r.unknown("garment." + key, "mesh, units, course_direction, course_axis, material, materials, face_materials");
+      r.unknown("garment." + key,
+                "mesh, stitch_mesh, design, stitch_size, units, course_direction, course_axis, material, materials, "
+                "face_materials");
     }
   }
-  if (s.garment_mesh.empty()) r.fail("garment", "needs \"mesh\" (a triangle mesh file: .obj, .ply, .off, .stl)");
-  if (s.course_direction.has_value() == s.course_axis.has_value())
-    r.fail("garment", "needs exactly one of \"course_direction\" and \"course_axis\" (the knit's course direction)");
+  const int sources = int(!s.garment_mesh.empty()) + int(!s.garment_stitch_mesh.empty()) + int(!s.garment_design.empty());
+  if (sources != 1) {
+    r.fail("garment", "needs exactly one of \"mesh\" (a triangle mesh file: .obj, .ply, .off, .stl), "
+                      "\"stitch_mesh\" (a stitch mesh PLY or a knitting map) and \"design\" (a design command's "
+                      "output directory)");
+  }
+  if (s.garment_mesh.empty()) {  // a stitch mesh: its stitches give the courses, per-yarn materials
+    if (s.course_direction || s.course_axis)
+      r.fail(s.course_direction ? "garment.course_direction" : "garment.course_axis",
+             "is for a triangle-mesh garment; a stitch mesh has its own courses (remove it)");
+    if (!s.face_materials.empty())
+      r.fail("garment.face_materials", "is for a triangle-mesh garment; a stitch mesh's yarn y takes materials[y]");
+    if (s.garment_units != "mm") r.fail("garment.units", "must be mm for a stitch mesh (stitch meshes are in mm)");
+  } else {
+    if (!s.garment_stitch_size.empty())
+      r.fail("garment.stitch_size", "goes with \"stitch_mesh\" or \"design\" (the stitches' rest size)");
+    if (s.course_direction.has_value() == s.course_axis.has_value())
+      r.fail("garment", "needs exactly one of \"course_direction\" and \"course_axis\" (the knit's course direction)");
+  }
   for (size_t k = 0; k < s.face_materials.size(); ++k) {
     if (s.face_materials[k] >= static_cast<int>(s.materials.size())) {
       r.fail(fmt::format("garment.face_materials[{}]", k),
@@ -162,20 +207,30 @@ void read_body(const Reader& r, const json& j, ClothScene& s) {
     } else if (key == "frames") {
       if (!value.is_array() || value.empty()) r.fail("body.frames", "must be a non-empty array of mesh files");
       for (size_t k = 0; k < value.size(); ++k) s.body_frames.push_back(r.path(value[k], fmt::format("body.frames[{}]", k)));
+    } else if (key == "animation") {
+      s.body_animation = r.path(value, "body.animation");
+    } else if (key == "mesh_name") {
+      s.body_mesh_name = r.string(value, "body.mesh_name");
+    } else if (key == "animation_name") {
+      s.body_animation_name = r.string(value, "body.animation_name");
     } else if (key == "units") {
       s.body_units = r.units(value, "body.units");
     } else {
-      r.unknown("body." + key, "mesh, frames, units");
+      r.unknown("body." + key, "mesh, frames, animation, mesh_name, animation_name, units");
     }
   }
-  if (s.body_mesh.empty() == s.body_frames.empty())
-    r.fail("body", "needs exactly one of \"mesh\" (a static body) and \"frames\" (one mesh per frame)");
+  if (int(!s.body_mesh.empty()) + int(!s.body_frames.empty()) + int(!s.body_animation.empty()) != 1) {
+    r.fail("body", "needs exactly one of \"mesh\" (a static body), \"frames\" (one mesh per frame) and "
+                   "\"animation\" (a .glb or .gltf with a morph-target or node animation)");
+  }
+  if (s.body_animation.empty() && (!s.body_mesh_name.empty() || !s.body_animation_name.empty()))
+    r.fail(s.body_mesh_name.empty() ? "body.animation_name" : "body.mesh_name", "goes with \"animation\" (a glTF file)");
 }
 
 }  // namespace
 
 const std::vector<std::string>& builtin_cloth_scene_names() {
-  static const std::vector<std::string> names = {"sleeve"};
+  static const std::vector<std::string> names = {"sleeve", "legging"};
   return names;
 }
 
@@ -201,8 +256,14 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
   for (const auto& [key, value] : j.items()) {
     if (key == "builtin") continue;
     if (key == "arm") {
-      if (s.builtin.empty()) r.fail("arm", "is a parameter of the built-in sleeve (\"builtin\": \"sleeve\")");
-      read_arm(r, value, s.arm);
+      if (s.builtin != "sleeve") r.fail("arm", "is a parameter of the built-in sleeve (\"builtin\": \"sleeve\")");
+      read_limb(r, value, "arm", arm_fields(s.arm), [&] {
+        (void)arm_upper_vertex_count(s.arm);
+        (void)arm_sleeve_mesh(s.arm).mesh.num_vertices();
+      });
+    } else if (key == "leg") {
+      if (s.builtin != "legging") r.fail("leg", "is a parameter of the built-in legging (\"builtin\": \"legging\")");
+      read_limb(r, value, "leg", leg_fields(s.leg), [&] { (void)legging_mesh(s.leg).mesh.num_vertices(); });
     } else if (key == "garment") {
       read_garment(r, value, s);
       has_garment = true;
@@ -211,6 +272,7 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
       has_body = true;
     } else if (key == "frames") {
       s.frames = r.integer(value, key, 1, 100000);
+      s.frames_given = true;
     } else if (key == "frame_rate_hz") {
       s.frame_rate_hz = r.positive(value, key);
     } else if (key == "substeps") {
@@ -241,19 +303,19 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
       }
     } else {
       r.unknown(key,
-                "builtin, arm, garment, body, frames, frame_rate_hz, substeps, friction, gravity_mm_s2, pin, attach, "
+                "builtin, arm, leg, garment, body, frames, frame_rate_hz, substeps, friction, gravity_mm_s2, pin, attach, "
                 "attach_within_mm, contact_distance_mm, sliding_distance_mm, newton");
     }
   }
   if (s.builtin.empty()) {
-    if (!has_garment) r.fail("garment", "is missing (or name a built-in scene: \"builtin\": \"sleeve\")");
-    if (!has_body) r.fail("body", "is missing (a mesh, or one mesh per frame)");
+    if (!has_garment) r.fail("garment", "is missing (or name a built-in scene: \"builtin\": \"sleeve\" or \"legging\")");
+    if (!has_body) r.fail("body", "is missing (a mesh, one mesh per frame, or a glTF animation)");
     if (!s.body_frames.empty() && static_cast<int>(s.body_frames.size()) != s.frames + 1) {
       r.fail("body.frames", fmt::format("has {} meshes; a run of {} frames needs frames + 1 = {} (frame 0 is the start)",
                                         s.body_frames.size(), s.frames, s.frames + 1));
     }
   } else if (!s.pinned.empty() || !s.attached.empty()) {
-    r.fail(s.pinned.empty() ? "attach" : "pin", "is set by the built-in scene (its shoulder and cuff rings)");
+    r.fail(s.pinned.empty() ? "attach" : "pin", "is set by the built-in scene (its first and last rings)");
   }
   if (s.contact_distance_mm > 10) {
     r.fail("contact_distance_mm", fmt::format("{} mm is more than 10 mm; the barrier acts within this distance, "
@@ -275,15 +337,15 @@ json cloth_scene_to_json(const ClothScene& s) {
   json j;
   if (!s.builtin.empty()) {
     j["builtin"] = s.builtin;
-    const ArmMotionParams& a = s.arm;
-    j["arm"] = {{"upper_length_mm", a.upper_length_mm}, {"forearm_length_mm", a.forearm_length_mm},
-                {"upper_radius_mm", a.upper_radius_mm}, {"forearm_radius_mm", a.forearm_radius_mm},
-                {"max_angle_deg", a.max_angle_deg},     {"body_edge_mm", a.body_edge_mm},
-                {"sleeve_edge_mm", a.sleeve_edge_mm},   {"clearance_mm", a.clearance_mm},
-                {"sleeve_start_mm", a.sleeve_start_mm}, {"wrist_margin_mm", a.wrist_margin_mm},
-                {"transition_mm", a.transition_mm}};
+    ClothScene copy = s;  // the field tables point into it
+    if (s.builtin == "legging") j["leg"] = fields_json(leg_fields(copy.leg));
+    else j["arm"] = fields_json(arm_fields(copy.arm));
   } else {
-    json g = {{"mesh", s.garment_mesh}, {"units", s.garment_units}};
+    json g = {{"units", s.garment_units}};
+    if (!s.garment_mesh.empty()) g["mesh"] = s.garment_mesh;
+    if (!s.garment_stitch_mesh.empty()) g["stitch_mesh"] = s.garment_stitch_mesh;
+    if (!s.garment_design.empty()) g["design"] = s.garment_design;
+    if (!s.garment_stitch_size.empty()) g["stitch_size"] = s.garment_stitch_size;
     if (s.course_direction) g["course_direction"] = {s.course_direction->x(), s.course_direction->y(), s.course_direction->z()};
     if (s.course_axis) {
       const auto& [p, d] = *s.course_axis;
@@ -294,8 +356,14 @@ json cloth_scene_to_json(const ClothScene& s) {
     g["materials"] = mats;
     if (!s.face_materials.empty()) g["face_materials"] = s.face_materials;
     j["garment"] = g;
-    j["body"] = s.body_frames.empty() ? json{{"mesh", s.body_mesh}, {"units", s.body_units}}
-                                      : json{{"frames", s.body_frames}, {"units", s.body_units}};
+    if (!s.body_animation.empty()) {
+      j["body"] = {{"animation", s.body_animation}, {"units", s.body_units}};
+      if (!s.body_mesh_name.empty()) j["body"]["mesh_name"] = s.body_mesh_name;
+      if (!s.body_animation_name.empty()) j["body"]["animation_name"] = s.body_animation_name;
+    } else {
+      j["body"] = s.body_frames.empty() ? json{{"mesh", s.body_mesh}, {"units", s.body_units}}
+                                        : json{{"frames", s.body_frames}, {"units", s.body_units}};
+    }
     j["pin"] = s.pinned;
     j["attach"] = s.attached;
     j["attach_within_mm"] = s.attach_within_mm;

@@ -7,13 +7,17 @@
 /// values; the meshes it names are read by the caller (the CLI, with the
 /// readers of io/) and checked against the scene there (counts, indices).
 ///
-///   {"garment": {"mesh": "sleeve.obj", "units": "mm",
+///   {"garment": {"mesh": "sleeve.obj", "units": "mm",      // or
+///                "stitch_mesh": "relaxed.ply" | "design": "out/dir",
+///                "stitch_size": "3.5x2.8",  (stitch meshes: no course)
 ///                "course_direction": [0, 0, 1]            // or
 ///                "course_axis": {"point": [0,0,0], "direction": [1,0,0]},
 ///                "material": "jersey.json" | {...},       // or
 ///                "materials": [...], "face_materials": [0, 1, ...]},
 ///    "body": {"mesh": "arm.obj"}                          // static, or
-///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},
+///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},  // or
+///    "body": {"animation": "walk.glb", "mesh_name": "body",   // glTF
+///             "animation_name": "walk", "units": "mm"},
 ///    "frames": 30, "frame_rate_hz": 30, "substeps": 2,
 ///    "friction": 0.5, "gravity_mm_s2": [0, 0, -9810],
 ///    "pin": [vertex, ...], "attach": [vertex, ...], "attach_within_mm": 0,
@@ -21,7 +25,8 @@
 ///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01}}
 ///
 /// or a built-in scene: {"builtin": "sleeve", "arm": {ArmMotionParams
-/// fields}, ...run fields} (arm_motion.h), which needs no file.
+/// fields}, ...run fields} (arm_motion.h) or {"builtin": "legging", "leg":
+/// {LegMotionParams fields}, ...} (leg_motion.h), which need no file.
 /// Paths are relative to the scene file's directory.
 
 #include <optional>
@@ -33,19 +38,26 @@
 #include "knitforge/geometry/vec.h"
 #include "knitforge/sim/arm_motion.h"
 #include "knitforge/sim/knit_material.h"
+#include "knitforge/sim/leg_motion.h"
 
 namespace knitforge {
 
-/// The built-in scene names ("sleeve").
+/// The built-in scene names ("sleeve", "legging").
 const std::vector<std::string>& builtin_cloth_scene_names();
 
 struct ClothScene {
   std::string where;    ///< the scene file, or "built-in NAME"
   std::string builtin;  ///< "" or a name of builtin_cloth_scene_names()
   ArmMotionParams arm;  ///< the built-in sleeve's arm
+  LegMotionParams leg;  ///< the built-in legging's leg
 
-  // The garment (file scenes).
+  // The garment (file scenes): a triangle mesh with a course direction, or
+  // a stitch mesh (a PLY or map of `relax`, or a design directory's
+  // stitch_mesh.ply) whose stitches give the courses and rest shape.
   std::string garment_mesh;    ///< path (resolved)
+  std::string garment_stitch_mesh;  ///< path (resolved): a stitch mesh PLY or a knitting map
+  std::string garment_design;       ///< path (resolved): a design command's output directory
+  std::string garment_stitch_size;  ///< "WxH" mm; "" = the design's report.json, else 3.5x2.8
   std::string garment_units = "mm";  ///< mm, cm or m (the caller scales)
   std::optional<Vec3> course_direction;
   /// Courses round an axis (a tube): course = direction x (centroid - point).
@@ -53,9 +65,14 @@ struct ClothScene {
   std::vector<KnitMaterial> materials{default_single_jersey()};
   std::vector<int> face_materials;  ///< empty (all materials[0]) or one per face
 
-  // The body (file scenes): one static mesh or frames + 1 meshes.
+  // The body (file scenes): one static mesh, frames + 1 meshes, or a glTF
+  // animation (io/read_gltf_animation.h) sampled at the frame times from
+  // its first key on; without "frames" the run lasts the animation.
   std::string body_mesh;
   std::vector<std::string> body_frames;
+  std::string body_animation;       ///< .glb / .gltf path (resolved)
+  std::string body_mesh_name;       ///< "" = every mesh node; else a node or mesh name
+  std::string body_animation_name;  ///< "" = the file's only animation
   std::string body_units = "mm";
 
   // Pins: held in place (world), attached (carried with the closest body
@@ -66,6 +83,7 @@ struct ClothScene {
 
   // The run.
   int frames = 30;
+  bool frames_given = false;  ///< "frames" was in the scene (else a glTF body sets it)
   double frame_rate_hz = 30.0;
   int substeps = 2;
   double friction = 0.5;
@@ -81,8 +99,8 @@ struct ClothScene {
 /// \throw InvalidInput naming `where` and the field for an unknown field, a
 ///        wrong type, a value out of range (frames 1..100000, frame rate
 ///        and substeps positive, friction >= 0, ...), a garment without a
-///        course direction, a body without a mesh, a frame list whose length
-///        is not frames + 1, a vertex index < 0, an unknown built-in name.
+///        course direction, a body without exactly one of mesh, frames and
+///        animation, a frame list whose length is not frames + 1, a vertex index < 0, an unknown built-in name.
 ClothScene cloth_scene_from_json(const nlohmann::json& j, const std::string& where, const std::string& base_dir = "");
 
 /// Reads a scene file. \throw IOError when it cannot be read or is not
