@@ -46,6 +46,7 @@ void add_flatten_command(CLI::App& app, Action& action) {
     int auto_darts = 0;
     double edge = kDefaultShapeEdgeLength, max_stitches = kDefaultMaxStitches;
     bool allow_wide = false, rms_only = false, no_evaluate = false, no_long_rows = false, json = false, ascii = false;
+    bool tube = false;
     DesignMachineOptions mach;
     DesignPredictOptions predict;
   };
@@ -76,8 +77,13 @@ void add_flatten_command(CLI::App& app, Action& action) {
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
   add_design_machine_options(*cmd, o->mach);
   add_design_predict_options(*cmd, o->predict);
+  cmd->add_flag("--tube", o->tube,
+                "Refused: a flattened pattern is a sheet; knit a tube in the round with shortrow or shortcolumn --tube");
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      if (o->tube)
+        throw UsageError("flatten knits a flat pattern (a sheet), not a tube in the round: use `knitforge shortrow " +
+                         o->input + " --tube` (or shortcolumn --tube), or drop --tube to flatten it with a seam");
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);

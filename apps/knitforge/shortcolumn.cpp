@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.h"
+#include "shortrow_tube.h"
 #include "knitforge/convert/stitch_mesh_to_yarn.h"
 #include "knitforge/core/stitch.h"
 #include "knitforge/design/shortcolumn/design_short_columns.h"
@@ -149,6 +150,7 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
     uint64_t seed = 0;
     DesignMachineOptions mach;
     DesignPredictOptions predict;
+    TubeFlags tube_flags;
   };
   auto o = std::make_shared<Opts>();
   const std::string names = shape_name_list();
@@ -193,12 +195,24 @@ void add_shortcolumn_command(CLI::App& app, Action& action) {
   add_max_stitches_option(*cmd, o->max_stitches);
   add_design_machine_options(*cmd, o->mach);
   add_design_predict_options(*cmd, o->predict);
+  add_tube_flags(*cmd, o->tube_flags);
   bc->excludes(field);
   field->excludes(bc);
   opt->excludes(field);
   field->excludes(opt);
   cmd->callback([=, &action] {
     action = [=]() -> int {
+      // In the round (seed 3.3.8): the rounds follow the field's isocurves
+      // and the wales start and end as increases and decreases (short
+      // columns) where the rounds grow and shrink: the tube route.
+      std::vector<const CLI::Option*> sheet_only;
+      for (const char* name : {"--bc", "--field", "--optimise", "--budget", "--symmetric", "--mirror", "--seed",
+                               "--alternatives", "--proxy-faces", "--diffusion", "--no-compare", "--cut"})
+        sheet_only.push_back(cmd->get_option(name));
+      if (auto t = tube_command(o->tube_flags, sheet_only)) {
+        copy_common_options(*o, *t);
+        return run_tube_design(*t);
+      }
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);

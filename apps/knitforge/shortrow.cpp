@@ -114,9 +114,8 @@ void add_shortrow_command(CLI::App& app, Action& action) {
     double bending = -1;
     double field_tolerance = -1;
     double max_stitches = kDefaultMaxStitches;
-    bool json = false, no_evaluate = false, ascii = false, no_report = false, tube = false;
-    bool no_tube_short_rows = false;
-    int crown_stitches = 12;
+    bool json = false, no_evaluate = false, ascii = false, no_report = false;
+    TubeFlags tube_flags;
     DesignMachineOptions mach;
     DesignPredictOptions predict;
   };
@@ -157,53 +156,17 @@ void add_shortrow_command(CLI::App& app, Action& action) {
   cmd->add_flag("--json", o->json, "Print report.json on stdout");
   cmd->add_flag("--no-report", o->no_report, "Do not write report.html");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII PLY files instead of binary");
-  cmd->add_flag("--tube", o->tube,
-                "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
-                "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam. "
-                "A surface with one boundary loop (a beanie) is knitted from its rim to its crown and closed there");
-  cmd->add_option("--crown-stitches", o->crown_stitches,
-                  "With --tube on a surface with one boundary loop: stitches of the last round, joined in pairs "
-                  "across the beds to close the crown (8..64)")
-      ->check(CLI::Range(8, 64));
-  cmd->add_flag("--no-tube-short-rows", o->no_tube_short_rows,
-                "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
-                "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
-                "where the outside lies further apart)");
+  add_tube_flags(*cmd, o->tube_flags);
   add_design_machine_options(*cmd, o->mach);
   add_design_predict_options(*cmd, o->predict);
   cmd->callback([=, &action] {
     action = [=]() -> int {
-      if (o->tube) {
-        for (const auto& [given, name] : {std::pair<bool, const char*>{!o->source.empty(), "--source"},
-                                          {!o->cut.empty(), "--cut"},
-                                          {o->diffusion >= 0, "--diffusion"},
-                                          {o->lambda > 0, "--lambda"},
-                                          {o->field_tolerance >= 0, "--field-tolerance"}}) {
-          if (given) {
-            throw UsageError(fmt::format("--tube takes no {}: the rounds follow the field between the two rims; "
-                                         "leave it out (or drop --tube to knit the surface as a sheet)",
-                                         name));
-          }
-        }
-        TubeCommandOptions t;
-        t.input = o->input;
-        t.outdir = o->outdir;
-        t.stitch = o->stitch;
-        t.units = o->units;
-        t.edge = o->edge;
-        t.max_stitches = o->max_stitches;
-        t.json = o->json;
-        t.ascii = o->ascii;
-        t.no_report = o->no_report;
-        t.mach = o->mach;
-        t.short_rows = !o->no_tube_short_rows;
-        t.crown_stitches = o->crown_stitches;
-        t.predict = o->predict;
-        t.no_evaluate = o->no_evaluate;
-        return run_tube_design(t);
+      if (auto t = tube_command(o->tube_flags, {cmd->get_option("--source"), cmd->get_option("--cut"),
+                                                  cmd->get_option("--diffusion"), cmd->get_option("--lambda"),
+                                                  cmd->get_option("--field-tolerance")})) {
+        copy_common_options(*o, *t);
+        return run_tube_design(*t);
       }
-      if (o->no_tube_short_rows)
-        throw UsageError("--no-tube-short-rows applies to --tube only; leave it out or add --tube");
       Timer all;
       const KnitParams params = parse_stitch_size(o->stitch);
       const double scale = unit_scale(o->units);

@@ -23,6 +23,39 @@
 
 namespace knitforge::cli {
 
+void add_tube_flags(CLI::App& cmd, TubeFlags& f) {
+  cmd.add_flag("--tube", f.tube,
+               "Knit a surface with two boundary loops in the round: closed rounds between the rims, increases "
+               "and decreases, a tubular map (docs/tubes.md); without it such a surface is cut open by a seam. "
+               "A surface with one boundary loop (a beanie, a sock) is knitted from its rim to its crown and closed "
+               "there");
+  cmd.add_option("--crown-stitches", f.crown_stitches,
+                 "With --tube on a surface with one boundary loop: stitches of the last round, joined in pairs "
+                 "across the beds to close the crown (8..64)")
+      ->check(CLI::Range(8, 64));
+  cmd.add_flag("--no-tube-short-rows", f.no_tube_short_rows,
+               "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
+               "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
+               "where the outside lies further apart)");
+}
+
+std::optional<TubeCommandOptions> tube_command(const TubeFlags& f, const std::vector<const CLI::Option*>& sheet_only) {
+  if (!f.tube) {
+    if (f.no_tube_short_rows)
+      throw UsageError("--no-tube-short-rows applies to --tube only; leave it out or add --tube");
+    return std::nullopt;
+  }
+  for (const CLI::Option* opt : sheet_only)
+    if (opt->count() > 0)
+      throw UsageError(fmt::format("--tube takes no {}: the rounds follow the field between the rims; leave it out "
+                                   "(or drop --tube to knit the surface as a sheet)",
+                                   opt->get_name()));
+  TubeCommandOptions t;
+  t.short_rows = !f.no_tube_short_rows;
+  t.crown_stitches = f.crown_stitches;
+  return t;
+}
+
 int run_tube_design(const TubeCommandOptions& o) {
   Timer all;
   const KnitParams params = parse_stitch_size(o.stitch);

@@ -154,6 +154,25 @@ TEST_F(Cli, ShortrowTubeBindsOffTheCapBeyondTheRackingLimit) {
   expect_knitted_as_designed(out + "/knitting_map.csv", path("cap.k"), "kniterate");
 }
 
+// --tube on the other design commands: shortcolumn runs the tube route
+// (its wales start and end as increases and decreases, the short columns
+// of a tube) and refuses its sheet-only options; flatten refuses --tube.
+TEST_F(Cli, ShortcolumnTubeKnitsInTheRoundAndFlattenRefusesTube) {
+  const std::string out = path("sc_sock");
+  CliRun r = run("shortcolumn sock --tube --stitch 7x5.6 --edge 6 --no-report -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("shima-swg091n2: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
+  EXPECT_NE(slurp(fs::path(out) / "knitting_map.csv").find(":close"), std::string::npos);
+  r = run("shortcolumn sock --tube --budget 5 -o " + path("sc_bad"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--tube takes no --budget"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("sc_bad")));
+  r = run("flatten sleeve --tube -o " + path("flat_bad"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("use `knitforge shortrow sleeve --tube`"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("flat_bad")));
+}
+
 // A directory named like a built-in shape (an earlier `-o sock`) does not
 // hide the built-in; any other directory is refused as input.
 TEST_F(Cli, ABuiltInShapeIsFoundPastADirectoryOfItsName) {
