@@ -1,15 +1,17 @@
 #pragma once
 /// \file quasi_newton_solve.h
 /// A quasi-Newton phase before Newton (newton_solve.h) for the simulator's
-/// energies: L-BFGS whose initial inverse Hessian is one Cholesky factor of
-/// a fixed positive definite matrix, e.g. the Clamp-projected Hessian at the
-/// start (the idea of Liu, Bouaziz and Kavan 2017, "Quasi-Newton methods for
-/// real-time simulation of hyperelastic materials"). An iteration costs one
-/// energy value and gradient per line-search trial and one back-substitution
-/// with the factor (milliseconds), where a Newton iteration costs a Hessian
+/// energies: L-BFGS whose initial inverse Hessian is the Cholesky factor of
+/// a positive definite matrix A, e.g. the Clamp-projected Hessian at the
+/// start, kept for many iterations (refreshed now and then, below; the idea
+/// of Liu, Bouaziz and Kavan 2017, "Quasi-Newton methods for real-time
+/// simulation of hyperelastic materials"). An iteration costs one energy
+/// value and gradient per line-search trial and one back-substitution with
+/// the factor (milliseconds), where a Newton iteration costs a Hessian
 /// assembly and a factorisation (~0.1 s at 11k unknowns), so L-BFGS takes
-/// the long, cheap descent of a buckling piece and Newton the last,
-/// quadratically convergent iterations.
+/// the long, cheap descent of a buckling piece and Newton whatever is left
+/// (on the free predictions measured in docs/sim.md L-BFGS reaches Newton's
+/// tolerance itself and Newton only confirms it).
 ///
 /// Each iteration: the direction p = -H_k g by the L-BFGS two-loop
 /// recursion over the last `history` pairs (s, y) = (x_{k+1} - x_k,
