@@ -107,13 +107,16 @@ void BM_DrapeStep(benchmark::State& state) {
 }
 BENCHMARK(BM_DrapeStep)->Unit(benchmark::kMillisecond);
 
-// Free predicted shape of the cup map (1288 stitches) from its Shape-Up shape.
+// Free predicted shape of the cup map (1288 stitches) from its Shape-Up shape
+// (L-BFGS phase, then Newton: PredictOptions' default).
 void BM_PredictCup(benchmark::State& state) {
   const StitchMesh start =
       relax_stitch_mesh(map_to_stitch_mesh_topology(sample_knitting_map("cup"), kParams), kParams, RelaxOptions{}).mesh;
   for (auto _ : state) {
     const PredictResult r = predict_shape(start, kParams, nullptr);
-    state.counters["iterations"] = r.solve.iterations;
+    state.counters["iterations"] = r.solve.iterations;  // Newton's
+    state.counters["lbfgs_iterations"] = r.solve.quasi_newton_iterations;
+    state.counters["factorizations"] = r.solve.factorizations;
     state.counters["converged"] = r.solve.converged;
     state.counters["max_force_mN"] = r.solve.max_force_mn;
   }

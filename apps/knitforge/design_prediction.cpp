@@ -21,7 +21,8 @@ void add_design_predict_options(CLI::App& cmd, DesignPredictOptions& options) {
                                       kDesignPredictMaxStitches));
   cmd.add_flag("--no-predict", options.skip, "Skip the fabric simulator's predicted shape")->excludes(on);
   cmd.add_option("--predict-max-iterations", options.max_iterations,
-                 "Newton iterations at most of the predicted shape (default 500)")
+                 "Newton iterations at most of the predicted shape (default 500; the L-BFGS phase before them "
+                 "takes at most 20 times as many)")
       ->check(positive_number());
 }
 
@@ -36,18 +37,19 @@ nlohmann::json design_prediction(const DesignPredictOptions& options, const std:
     summary = fmt::format(
         "predicted shape skipped: {} stitches is above the default limit of {} (it would take about {:.0f} s); "
         "--predict runs it, or `knitforge predict {}`",
-        n, kDesignPredictMaxStitches, 0.015 * n, outdir);
+        n, kDesignPredictMaxStitches, 0.002 * n, outdir);
     return nullptr;
   }
   const Timer t;
   note(fmt::format("predicting the shape of {} stitches (fabric simulator, free) ...", n));
   PredictOptions po;
-  po.equilibrium.newton.max_iterations = options.max_iterations;
+  set_predict_iterations(po, options.max_iterations);
   const PredictResult r = predict_shape(designed, params, nullptr, po);
   nlohmann::json j = {{"predictor", "fabric simulator: free static equilibrium (as knitforge predict)"},
                       {"converged", r.solve.converged},
                       {"stop_reason", r.solve.stop_reason},
                       {"newton_iterations", r.solve.iterations},
+                      {"quasi_newton_iterations", r.solve.quasi_newton_iterations},
                       {"factorizations", r.solve.factorizations},
                       {"max_free_force_mn", r.solve.max_force_mn},
                       {"force_tolerance_mn", po.equilibrium.newton.force_tolerance_mn},
@@ -65,13 +67,15 @@ nlohmann::json design_prediction(const DesignPredictOptions& options, const std:
     ply.ascii = ascii;
     ply.scalars = {{"shape_error", se.stitch_error}};
     write_stitch_mesh_ply((std::filesystem::path(outdir) / "predicted.ply").string(), aligned, ply);
-    summary = fmt::format("predicted shape error RMS {:.3f} mm, max {:.3f} mm (converged after {} Newton iterations)",
-                          se.rms_error, se.max_error, r.solve.iterations);
+    summary = fmt::format(
+        "predicted shape error RMS {:.3f} mm, max {:.3f} mm (converged after {} L-BFGS and {} Newton iterations)",
+        se.rms_error, se.max_error, r.solve.quasi_newton_iterations, r.solve.iterations);
   } else {
     j["shape_error_mm"] = nullptr;
-    summary = fmt::format("predicted shape NOT converged ({}, {} Newton iterations, largest free force {:.3g} mN): "
-                          "no predicted shape error",
-                          r.solve.stop_reason, r.solve.iterations, r.solve.max_force_mn);
+    summary = fmt::format(
+        "predicted shape NOT converged ({}, {} L-BFGS and {} Newton iterations, largest free force {:.3g} mN): "
+        "no predicted shape error",
+        r.solve.stop_reason, r.solve.quasi_newton_iterations, r.solve.iterations, r.solve.max_force_mn);
   }
   j["seconds"] = t.seconds();
   return j;

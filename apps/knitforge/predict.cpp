@@ -70,7 +70,7 @@ void add_predict_command(CLI::App& app, Action& action) {
   cmd->add_option("--tolerance", o->tolerance, "Converged when no free vertex force exceeds this (mN)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--max-iterations", o->max_iterations, "Newton iterations at most (per friction round)")
+  cmd->add_option("--max-iterations", o->max_iterations, "Newton iterations at most (per friction round; the L-BFGS phase before them takes at most 20 times as many)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Also print the report (predict.json) on stdout");
@@ -118,7 +118,7 @@ void add_predict_command(CLI::App& app, Action& action) {
                                                              : PsdProjection::None;
       po.equilibrium.contact.friction = o->friction;
       po.equilibrium.newton.force_tolerance_mn = o->tolerance;
-      po.equilibrium.newton.max_iterations = o->max_iterations;
+      set_predict_iterations(po, o->max_iterations);
       std::string support_desc;
       KinematicBody support;
       if (!o->on.empty()) support = KinematicBody(load_surface_or_shape(o->on, o->units, o->edge, support_desc));
@@ -145,6 +145,9 @@ void add_predict_command(CLI::App& app, Action& action) {
                     {"stop_reason", r.solve.stop_reason},
                     {"newton_iterations", r.solve.iterations},
                     {"factorizations", r.solve.factorizations},
+                    {"local_minimum", r.solve.local_minimum},
+                    {"quasi_newton_iterations", r.solve.quasi_newton_iterations},
+                    {"quasi_newton_evaluations", r.solve.quasi_newton_evaluations},
                     {"max_free_force_mn", r.solve.max_force_mn},
                     {"force_tolerance_mn", o->tolerance},
                     {"projection", o->projection},
@@ -192,9 +195,10 @@ void add_predict_command(CLI::App& app, Action& action) {
       write_report_json(out("material.json"), material_to_json(po.model.materials[0]), false);
       j["seconds"] = all.seconds();
       write_report_json(out("predict.json"), j, o->json);
-      note(fmt::format("{} after {} Newton iterations (largest free force {:.3g} mN, tolerance {:.3g}){}; {:.2f} s -> {}",
+      note(fmt::format("{} after {} L-BFGS and {} Newton iterations (largest free force {:.3g} mN, tolerance "
+                       "{:.3g}){}; {:.2f} s -> {}",
                        r.solve.converged ? "converged" : "NOT converged (" + r.solve.stop_reason + ")",
-                       r.solve.iterations, r.solve.max_force_mn, o->tolerance,
+                       r.solve.quasi_newton_iterations, r.solve.iterations, r.solve.max_force_mn, o->tolerance,
                        j.contains("shape_error")
                            ? fmt::format("; shape error RMS {:.3f} mm, max {:.3f} mm",
                                          j["shape_error"]["rms_mm"].get<double>(),

@@ -15,9 +15,9 @@ using namespace knitforge_e2e;
 namespace {
 
 // Small designs (300 to 800 stitches, seconds each) of the three routes. The
-// flatten route on a curved surface: on the flat disk its long rows (added
-// beyond the pattern) leave the free equilibrium unconverged after 500 Newton
-// iterations.
+// flatten route on a curved surface (on the flat disk its long rows, added
+// beyond the pattern, make the free equilibrium hard to reach: Newton alone
+// did not in 500 iterations).
 const char* const kShortRow = "shortrow disk --stitch 5x4 --no-report --no-knitout";
 const char* const kFlatten = "flatten hemisphere --stitch 8x6 --no-knitout";
 const char* const kShortColumn =
@@ -50,7 +50,7 @@ class DesignPrediction : public Cli {
     EXPECT_NEAR(max, p["shape_error"]["max_mm"].get<double>(), 1e-6);
   }
 
-  /// With one Newton iteration the prediction of `design` does not converge
+  /// With one Newton iteration (after 20 L-BFGS ones) the prediction of `design` does not converge
   /// (converged false, a null error, no predicted.ply); --no-predict runs none.
   void expect_unconverged_and_skipped(const std::string& design) {
     CliRun r = run(design + " --predict-max-iterations 1 -o " + path("d"));

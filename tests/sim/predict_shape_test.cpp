@@ -130,10 +130,21 @@ StitchMesh rolled_small_sheet() {
   return sheet;
 }
 
+// Newton alone (no quasi-Newton phase), from the given start projection.
 PredictResult predict_rolled(PsdProjection start) {
   PredictOptions o;
   o.equilibrium.start_projection = start;
+  o.equilibrium.quasi_newton.max_iterations = 0;
   return predict_shape(rolled_small_sheet(), stitch(3.5, 2.8), nullptr, o);
+}
+
+void expect_same_edge_lengths(const StitchMesh& a, const StitchMesh& b, double tolerance) {
+  for (const Stitch& st : a.stitches) {
+    for (int k = 0; k < st.corners(); ++k) {
+      const int i = st.v[k], j = st.v[(k + 1) % st.corners()];
+      EXPECT_NEAR((a.vertices[i] - a.vertices[j]).norm(), (b.vertices[i] - b.vertices[j]).norm(), tolerance);
+    }
+  }
 }
 
 TEST(PredictShape, ProjectedStartReachesTheSameEquilibriumInFewerIterations) {
@@ -160,14 +171,7 @@ TEST(PredictShape, ProjectedStartReachesTheSameEquilibriumInFewerIterations) {
   // edge lengths (the two differ by a rigid motion at most).
   EXPECT_LT(projected.solve.energy, 1e-6);
   EXPECT_LT(shifted.solve.energy, 1e-6);
-  const StitchMesh& a = projected.predicted;
-  const StitchMesh& b = shifted.predicted;
-  for (const Stitch& st : a.stitches) {
-    for (int k = 0; k < st.corners(); ++k) {
-      const int i = st.v[k], j = st.v[(k + 1) % st.corners()];
-      EXPECT_NEAR((a.vertices[i] - a.vertices[j]).norm(), (b.vertices[i] - b.vertices[j]).norm(), 1e-5);
-    }
-  }
+  expect_same_edge_lengths(projected.predicted, shifted.predicted, 1e-5);
   EXPECT_LT(projected.solve.iterations, shifted.solve.iterations)
       << projected.solve.factorizations << " vs " << shifted.solve.factorizations << " factorisations";
   EXPECT_LT(projected.solve.factorizations, shifted.solve.factorizations);
@@ -176,6 +180,54 @@ TEST(PredictShape, ProjectedStartReachesTheSameEquilibriumInFewerIterations) {
 TEST(PredictShape, ProjectedStartIsDeterministic) {
   const PredictResult a = predict_rolled(PsdProjection::Clamp);
   const PredictResult b = predict_rolled(PsdProjection::Clamp);
+  ASSERT_EQ(a.solve.iterations, b.solve.iterations);
+  for (size_t v = 0; v < a.predicted.vertices.size(); ++v) EXPECT_EQ(a.predicted.vertices[v], b.predicted.vertices[v]);
+}
+
+// The quasi-Newton phase (L-BFGS with the factored Clamp Hessian,
+// PredictOptions' default) on the same rolled sheet: the same flat
+// equilibrium as Newton alone, a strict minimum (the exact Hessian factors
+// there), with fewer factorisations, and rerun bit-identically.
+PredictResult predict_rolled_quasi_newton(int quasi_newton_iterations, int newton_iterations) {
+  PredictOptions o;
+  o.equilibrium.quasi_newton.max_iterations = quasi_newton_iterations;
+  o.equilibrium.newton.max_iterations = newton_iterations;
+  return predict_shape(rolled_small_sheet(), stitch(3.5, 2.8), nullptr, o);
+}
+
+TEST(PredictShape, QuasiNewtonPhaseReachesNewtonsEquilibriumWithFewerFactorisations) {
+  ASSERT_GT(PredictOptions().equilibrium.quasi_newton.max_iterations, 0);  // on by default
+  const PredictResult newton = predict_rolled(PsdProjection::Clamp);
+  const PredictResult qn = predict_rolled_quasi_newton(10000, 500);
+  ASSERT_TRUE(newton.solve.converged) << newton.solve.stop_reason;
+  ASSERT_TRUE(qn.solve.converged) << qn.solve.stop_reason;
+  EXPECT_LE(qn.solve.max_force_mn, 1e-5);
+  EXPECT_TRUE(qn.solve.local_minimum);
+  EXPECT_TRUE(newton.solve.local_minimum);
+  EXPECT_GT(qn.solve.quasi_newton_iterations, 0);
+  EXPECT_GE(qn.solve.quasi_newton_evaluations, qn.solve.quasi_newton_iterations);
+  EXPECT_EQ(newton.solve.quasi_newton_iterations, 0);
+  EXPECT_LT(qn.solve.energy, 1e-6);
+  expect_same_edge_lengths(qn.predicted, newton.predicted, 1e-4);
+  EXPECT_LT(qn.solve.factorizations, newton.solve.factorizations);
+}
+
+TEST(PredictShape, QuasiNewtonPhaseAloneDoesNotClaimConvergence) {
+  // A few L-BFGS steps and no Newton iteration: far from the equilibrium,
+  // and said so.
+  const PredictResult r = predict_rolled_quasi_newton(3, 0);
+  EXPECT_EQ(r.solve.quasi_newton_iterations, 3);
+  EXPECT_EQ(r.solve.iterations, 0);
+  EXPECT_FALSE(r.solve.converged);
+  EXPECT_FALSE(r.solve.local_minimum);
+  EXPECT_EQ(r.solve.stop_reason, "iteration limit");
+  EXPECT_GT(r.solve.max_force_mn, 1e-5);
+}
+
+TEST(PredictShape, QuasiNewtonPhaseIsDeterministic) {
+  const PredictResult a = predict_rolled_quasi_newton(10000, 500);
+  const PredictResult b = predict_rolled_quasi_newton(10000, 500);
+  ASSERT_EQ(a.solve.quasi_newton_evaluations, b.solve.quasi_newton_evaluations);
   ASSERT_EQ(a.solve.iterations, b.solve.iterations);
   for (size_t v = 0; v < a.predicted.vertices.size(); ++v) EXPECT_EQ(a.predicted.vertices[v], b.predicted.vertices[v]);
 }

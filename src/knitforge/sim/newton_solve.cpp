@@ -27,11 +27,7 @@ double max_vertex_force(const Eigen::VectorXd& g, const std::vector<char>& fixed
   return m;
 }
 
-namespace {
-
-// Identity rows and columns for the fixed unknowns; returns the mean
-// diagonal entry of the free ones.
-double apply_fixed(const HessianPattern& pattern, const std::vector<char>& fixed, std::vector<double>& values) {
+double hold_fixed_unknowns(const HessianPattern& pattern, const std::vector<char>& fixed, std::vector<double>& values) {
   const auto& starts = pattern.column_starts();
   const auto& rows = pattern.rows();
   const int dim = 3 * pattern.num_vertices();
@@ -51,8 +47,6 @@ double apply_fixed(const HessianPattern& pattern, const std::vector<char>& fixed
   }
   return free > 0 ? diag / free : 1.0;
 }
-
-}  // namespace
 
 NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fixed, const EvaluateEnergy& evaluate,
                           const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver,
@@ -99,7 +93,7 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
       res.stop_reason = "iteration limit";
       break;
     }
-    double scale = apply_fixed(*ev.pattern, fixed, ev.hessian_values);
+    double scale = hold_fixed_unknowns(*ev.pattern, fixed, ev.hessian_values);
     NewtonIterate rec;
     rec.energy = ev.value;
     rec.max_force_mn = res.max_force_mn;
@@ -128,7 +122,7 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
             EnergyEval pe = projected(res.x, Derivatives::Hessian);
             res.seconds.evaluate += te.seconds();
             ev.hessian_values = std::move(pe.hessian_values);
-            scale = apply_fixed(*ev.pattern, fixed, ev.hessian_values);
+            scale = hold_fixed_unknowns(*ev.pattern, fixed, ev.hessian_values);
             rec.projected = true;
             mu = 0.0;
             continue;

@@ -119,6 +119,12 @@ NewtonResult newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fi
                           const MaxStep& max_step, const NewtonOptions& options, SparseSolver& solver,
                           const EvaluateEnergy& projected = {});
 
+/// Replaces the rows and columns of the `fixed` unknowns (empty: none) of a
+/// Hessian with `pattern`'s values by the identity's; returns the mean
+/// diagonal entry of the free unknowns (1 when there is none), the scale of
+/// a Levenberg-Marquardt shift.
+double hold_fixed_unknowns(const HessianPattern& pattern, const std::vector<char>& fixed, std::vector<double>& values);
+
 /// The largest vertex force max_i |g_i| over vertices whose three unknowns
 /// are not all fixed (mN).
 double max_vertex_force(const Eigen::VectorXd& gradient, const std::vector<char>& fixed);

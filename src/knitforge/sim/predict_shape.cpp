@@ -32,6 +32,11 @@ double clearance(const KinematicBody& body, const Vec3& p) {
 
 }  // namespace
 
+void set_predict_iterations(PredictOptions& options, int newton_iterations) {
+  options.equilibrium.newton.max_iterations = newton_iterations;
+  options.equilibrium.quasi_newton.max_iterations = kQuasiNewtonPerNewton * newton_iterations;
+}
+
 std::vector<char> free_body_constraints(const Eigen::VectorXd& x) {
   const int n = static_cast<int>(x.size() / 3);
   std::vector<char> held(x.size(), 0);

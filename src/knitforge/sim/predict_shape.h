@@ -36,6 +36,11 @@
 
 namespace knitforge {
 
+/// L-BFGS iterations of the quasi-Newton phase allowed per Newton
+/// iteration (set_predict_iterations()): one factorisation costs about as
+/// much as 20-30 of them at 11k unknowns (docs/sim.md, "Solver").
+inline constexpr int kQuasiNewtonPerNewton = 20;
+
 struct PredictOptions {
   SimModelOptions model;
   bool gravity = false;  ///< -9810 mm/s² along z (needs a support)
@@ -44,6 +49,8 @@ struct PredictOptions {
     e.newton.force_tolerance_mn = 1e-5;
     e.newton.max_iterations = 500;
     e.projection = PsdProjection::None;  // exact Hessians, shifted when indefinite
+    // L-BFGS first (docs/sim.md, "Solver"); Newton finishes and decides.
+    e.quasi_newton.max_iterations = kQuasiNewtonPerNewton * 500;
     return e;
   }();
   /// Smallest distance of the piece to the support at the start (mm); must
@@ -77,6 +84,11 @@ struct PredictResult {
   std::vector<double> stitch_wale_strain;
   int num_elements = 0;
 };
+
+/// The iteration budget of the equilibrium solve: at most `newton_iterations`
+/// Newton iterations (> 0) after at most kQuasiNewtonPerNewton times as many
+/// L-BFGS iterations (the default: 500 and 10 000).
+void set_predict_iterations(PredictOptions& options, int newton_iterations);
 
 /// \throw InvalidInput for an empty mesh, bad params or options, gravity
 ///        without a support, a piece that cannot be lifted clear of the

@@ -13,6 +13,7 @@
 #include "knitforge/sim/inertia_energy.h"
 #include "knitforge/sim/membrane_energy.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/timer.h"
 
 namespace knitforge {
 
@@ -275,10 +276,33 @@ EquilibriumResult solve_equilibrium(SimWorkspace& ws, const Eigen::VectorXd& x0,
     const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return has_body ? collision_free_step(*support, a, b, ws.pinned_vertices()) : 1.0;
     };
+    if (o.quasi_newton.max_iterations > 0) {
+      QuasiNewtonOptions qo = o.quasi_newton;
+      qo.force_tolerance_mn = o.newton.force_tolerance_mn;
+      const QuasiNewtonResult q =
+          quasi_newton_solve(x, fixed, energy(o.projection), energy(PsdProjection::Clamp), max_step, qo, ws.solver());
+      x = q.x;
+      out.quasi_newton_iterations += q.iterations;
+      out.quasi_newton_evaluations += q.evaluations;
+      out.factorizations += q.factorizations;
+      accumulate(out.seconds, q.seconds);
+    }
     const bool projected_start = o.projection == PsdProjection::None && o.start_projection != PsdProjection::None;
     const NewtonResult r = newton_solve(x, fixed, energy(o.projection), max_step, o.newton, ws.solver(),
                                         projected_start ? EvaluateEnergy(energy(o.start_projection)) : EvaluateEnergy{});
     x = r.x;
+    if (fi == rounds - 1 && r.converged) {
+      // Is it a minimum? The exact Hessian factors only when positive definite.
+      const Timer t;
+      EnergyEval h = energy(PsdProjection::None)(x, Derivatives::Hessian);
+      hold_fixed_unknowns(*h.pattern, fixed, h.hessian_values);
+      try {
+        ws.solver().refactor(h.pattern->matrix(h.hessian_values));
+        out.local_minimum = true;
+      } catch (const SolverError&) {
+      }
+      out.seconds.factor += t.seconds();
+    }
     out.converged = r.converged;  // the last round decides
     out.iterations += r.iterations;
     out.factorizations += r.factorizations;

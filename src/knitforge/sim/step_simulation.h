@@ -39,6 +39,7 @@
 #include "knitforge/sim/kinematic_body.h"
 #include "knitforge/sim/newton_solve.h"
 #include "knitforge/sim/psd_projection.h"
+#include "knitforge/sim/quasi_newton_solve.h"
 #include "knitforge/sim/sim_model.h"
 #include "knitforge/sim/sim_state.h"
 
@@ -112,6 +113,13 @@ struct EquilibriumOptions {
   /// from the start. Measured on the free short-row hemisphere (3688
   /// stitches): 250 -> 114 iterations with Clamp (docs/sim.md).
   PsdProjection start_projection = PsdProjection::Clamp;
+  /// The quasi-Newton phase before Newton (quasi_newton_solve.h; off when
+  /// max_iterations is 0): L-BFGS on the energy with a factor of the
+  /// Clamp-projected Hessian (at the start, refreshed when progress stalls)
+  /// as its initial inverse Hessian, then Newton from where it stopped (the
+  /// convergence criterion is Newton's). Its force tolerance is set to
+  /// Newton's. Each friction round runs it before its Newton solve.
+  QuasiNewtonOptions quasi_newton;
   int friction_iterations = 3;
   /// Coordinates held at their start values besides the pins: empty, or one
   /// flag per coordinate (3n), e.g. free_body_constraints() (predict_shape.h).
@@ -122,7 +130,13 @@ struct EquilibriumResult {
   Eigen::VectorXd positions_mm;
   bool converged = false;
   int iterations = 0;  ///< Newton iterations over all friction iterations
-  int factorizations = 0;  ///< Cholesky factorisations (more than iterations when shifts were needed)
+  int factorizations = 0;  ///< Cholesky factorisations (more than iterations when shifts were needed; the quasi-Newton phase's included)
+  /// Converged, and the exact Hessian there (held coordinates and pins
+  /// fixed) is positive definite (it factors; one more factorisation, not
+  /// counted above): a strict local minimum, not a saddle.
+  bool local_minimum = false;
+  int quasi_newton_iterations = 0;  ///< L-BFGS steps before Newton (over all friction iterations)
+  int quasi_newton_evaluations = 0; ///< their energy values and gradients
   double energy = 0.0; ///< elastic energy at the end (µJ)
   double max_force_mn = 0.0;
   int contacts = 0;
