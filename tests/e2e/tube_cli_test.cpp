@@ -1,5 +1,12 @@
 // shortrow --tube end to end: design, knitout, simulate (docs/tubes.md "Design").
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include <nlohmann/json.hpp>
+
+#include "knitforge/geometry/shapes.h"
+#include "knitforge/io/mesh_io.h"
 
 #include "cli_fixture.h"
 
@@ -171,6 +178,34 @@ TEST_F(Cli, ShortcolumnTubeKnitsInTheRoundAndFlattenRefusesTube) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("use `knitforge shortrow sleeve --tube`"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("flat_bad")));
+}
+
+// A scanned-style annulus: the sleeve remeshed at 4 mm, every vertex moved
+// by up to 1 mm in a pseudo-random direction (a fixed seed), the vertex
+// order shuffled; knitted in the round and as designed on both machines.
+TEST_F(Cli, ShortrowTubeKnitsANoisyTwoLoopSurface) {
+  knitforge::TriMesh m = knitforge::make_shape("sleeve", 4.0);
+  uint64_t state = 12345;
+  auto uniform = [&state] {  // in [-1, 1)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / static_cast<double>(1ULL << 52) - 1.0;
+  };
+  for (knitforge::Vec3& p : m.vertices) p += knitforge::Vec3(uniform(), uniform(), uniform()) / std::sqrt(3.0);
+  std::vector<int> order(static_cast<size_t>(m.num_vertices()));
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  for (size_t i = order.size() - 1; i > 0; --i)
+    std::swap(order[i], order[static_cast<size_t>((uniform() + 1.0) / 2.0 * static_cast<double>(i + 1)) % (i + 1)]);
+  knitforge::TriMesh shuffled;
+  shuffled.vertices.resize(m.vertices.size());
+  for (size_t i = 0; i < order.size(); ++i) shuffled.vertices[static_cast<size_t>(order[i])] = m.vertices[i];
+  for (auto f : m.faces) shuffled.faces.push_back({order[f[0]], order[f[1]], order[f[2]]});
+  knitforge::write_mesh(path("noisy_sleeve.obj"), shuffled);
+  const std::string out = path("noisy");
+  CliRun r = run("shortrow " + path("noisy_sleeve.obj") + " --tube --stitch 7x5.6 --machine kniterate --no-report -o " +
+                 out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("kniterate: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
+  expect_knitted_as_designed(out + "/knitting_map.csv", path("noisy.k"), "shima-swg091n2");
 }
 
 // A directory named like a built-in shape (an earlier `-o sock`) does not
