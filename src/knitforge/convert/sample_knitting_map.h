@@ -48,7 +48,7 @@ struct TubeMapOptions {
 /// in each quarter of the round: in each half the wales at a quarter and at
 /// three quarters of its live wales, moved along by k so that the decreases
 /// spiral and no two meet; the wale's column is Collapsed above.
-/// 	hrow InvalidInput when the options do not fit (names the option): odd or
+/// \throw InvalidInput when the options do not fit (names the option): odd or
 ///        small round, too few rows for the decreases, fewer than 4 live
 ///        wales left in a half.
 KnittingMap tube_knitting_map(const TubeMapOptions& options = {});

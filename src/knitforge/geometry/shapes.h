@@ -110,7 +110,7 @@ struct SleeveShape {
 /// at the end; area 2π r_mean L (Pappus) ≈ 65,800 mm². Built like
 /// open_tube(): staggered rings of n = max(6, round(2π r_mean / l))
 /// vertices, round(L / (√3/2 l)) + 1 rings, mapped onto the sweep.
-/// 	hrow InvalidInput (besides the common conditions) when a radius is
+/// \throw InvalidInput (besides the common conditions) when a radius is
 ///        not below the bend radius or the angle is not in (0, 180].
 TriMesh sleeve(const SleeveShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
 
@@ -137,7 +137,7 @@ struct CapShape {
 /// neck). Meshed by isotropic remeshing with exact projection onto the
 /// sphere and the two rim circles, from rings of latitude with the faces of
 /// the face opening removed.
-/// 	hrow InvalidInput (besides the common conditions) when the openings
+/// \throw InvalidInput (besides the common conditions) when the openings
 ///        overlap or one is not between 5° and 85°.
 TriMesh cap(const CapShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
 
@@ -187,7 +187,7 @@ struct SockShape {
 /// triangle's height apart on the axis, so the triangles are squashed along
 /// the axis on the instep side of the bend and stretched on the heel side,
 /// by (heel_radius -+ radius) / heel_radius.
-/// 	hrow InvalidInput (besides the common conditions) when the radius is
+/// \throw InvalidInput (besides the common conditions) when the radius is
 ///        not below the heel radius or a length is not positive.
 TriMesh sock(const SockShape& shape = {}, double edge_length = kDefaultShapeEdgeLength);
 

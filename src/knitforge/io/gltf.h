@@ -85,7 +85,7 @@ struct AnimatedMesh {
 /// (viewers shade flat). With one frame the meshes are static (no targets,
 /// no animation). The file is about 12 bytes per vertex and frame plus 4
 /// bytes per frame squared per mesh (the weights).
-/// 	hrow InvalidInput for no frame times, times not increasing, a frame
+/// \throw InvalidInput for no frame times, times not increasing, a frame
 ///        count or vertex count that differs, a bad index, a coordinate
 ///        that overflows float32, or more than the 4 GiB a GLB holds;
 ///        IOError when the file cannot be written.
