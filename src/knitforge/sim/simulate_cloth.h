@@ -35,6 +35,7 @@
 #include "knitforge/sim/contact_energy.h"
 #include "knitforge/sim/newton_solve.h"
 #include "knitforge/sim/psd_projection.h"
+#include "knitforge/sim/quasi_newton_solve.h"
 #include "knitforge/sim/sim_model.h"
 
 namespace knitforge {
@@ -51,6 +52,13 @@ struct ClothOptions {
   ContactParams contact;
   NewtonOptions newton{20, 1e-2};
   PsdProjection projection = PsdProjection::Clamp;
+  /// The L-BFGS phase before each step's Newton solve (StepOptions::
+  /// quasi_newton; 0 iterations = off).
+  QuasiNewtonOptions quasi_newton = [] {
+    QuasiNewtonOptions q;
+    q.max_iterations = 0;
+    return q;
+  }();
   /// A vertex touches the body (for the sliding measure) within this distance (mm).
   double sliding_distance_mm = 1.0;
   /// The closest distance per frame is searched within this range (mm);
@@ -69,6 +77,8 @@ struct ClothFrame {
   double min_distance_mm = 0.0;    ///< smallest free-vertex-to-body distance over the frame's steps
   double elastic_energy_uj = 0.0, kinetic_energy_uj = 0.0, gravity_energy_uj = 0.0;
   int newton_iterations = 0;
+  int quasi_newton_iterations = 0;  ///< L-BFGS steps before Newton (StepOptions::quasi_newton)
+  int factorizations = 0;           ///< Cholesky factorisations, failed ones included
   bool converged = true;
   int solves_at_iteration_limit = 0;  ///< Newton solves of the frame that hit the iteration limit
   int steps = 0;  ///< backward-Euler steps (substeps, more when split)
@@ -83,6 +93,8 @@ struct ClothResult {
   std::vector<double> max_sliding_mm;   ///< per vertex, over time
   bool converged = true;                ///< every Newton solve converged
   int newton_iterations = 0;
+  int quasi_newton_iterations = 0;
+  int factorizations = 0;
   int steps = 0;
   double min_distance_mm = 0.0;         ///< over every frame
   NewtonTimings seconds;
