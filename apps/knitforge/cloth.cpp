@@ -517,8 +517,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
       ReportHtmlOptions ro;
       ro.title = "cloth: " + scene.where;
       write_report_html(o->outdir, ro);
-      note(fmt::format("{} frames, {} steps, {} Newton iterations, {} L-BFGS, {} factorisations{}; closest distance to the body {:.3g} mm; "
-                       "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
+      note(fmt::format("{} frames, {} steps, {} Newton iterations, {} L-BFGS, {} factorisations{}; closest "
+                       "distance to the body {:.3g} mm; largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
                        co.frames, r.steps, r.newton_iterations, r.quasi_newton_iterations, r.factorizations,
                        unconverged ? fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
                                                  unconverged, at_limit)

@@ -105,7 +105,8 @@ TEST(StepQuasiNewton, DrapeAndRisingDomeNeverPenetrate) {
       st = r.state;
       ASSERT_GT(r.min_distance_mm, 0.0) << "step " << k;
       expect_outside(s.body, st.positions_mm, k);
-      for (Eigen::Index v = 0; v < st.positions_mm.size() / 3; ++v) lowest = std::min(lowest, st.positions_mm[3 * v + 2]);
+      for (Eigen::Index v = 0; v < st.positions_mm.size() / 3; ++v)
+        lowest = std::min(lowest, st.positions_mm[3 * v + 2]);
     }
     EXPECT_LT(lowest, s.radius - 8.0);  // it really draped
   }
@@ -133,7 +134,8 @@ TEST(StepQuasiNewton, DrapeAndRisingDomeNeverPenetrate) {
     ASSERT_TRUE(r.converged) << "step " << k;
     ASSERT_GT(r.min_distance_mm, 0.0) << "step " << k;
     expect_outside(dome, st.positions_mm, k);
-    for (Eigen::Index v = 0; v < st.positions_mm.size() / 3; ++v) highest = std::max(highest, st.positions_mm[3 * v + 2]);
+    for (Eigen::Index v = 0; v < st.positions_mm.size() / 3; ++v)
+      highest = std::max(highest, st.positions_mm[3 * v + 2]);
   }
   EXPECT_GT(highest, 10.0);  // the dome pushed the sheet up
 }

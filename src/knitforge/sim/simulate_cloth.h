@@ -55,7 +55,7 @@ struct ClothOptions {
   /// The L-BFGS phase before each step's Newton solve (StepOptions::
   /// quasi_newton; 0 iterations = off, Newton alone). On the built-in
   /// sleeve (docs/sim.md, "Solver") it reaches Newton's tolerance itself in
-  /// nearly every step (Newton confirms it, no factorisation) with ~5
+  /// every step (Newton confirms it, no factorisation) with ~5
   /// factorisations a step where Newton alone takes ~17 and still stops at
   /// its iteration limit in 26 of 30 frames. A refresh when the last 10
   /// iterations lowered the energy by less than 0.1 of its decrease since
