@@ -143,6 +143,10 @@ void BM_ClothSleeve(benchmark::State& state) {
   for (auto _ : state) {
     const ClothResult r = simulate_cloth(model, arm_body_mesh(p, 0.0), poses, attached, o);
     state.counters["newton_per_frame"] = static_cast<double>(r.newton_iterations) / frames;
+    state.counters["lbfgs_per_frame"] = static_cast<double>(r.quasi_newton_iterations) / frames;
+    state.counters["factorizations_per_frame"] = static_cast<double>(r.factorizations) / frames;
+    state.counters["converged"] = r.converged ? 1 : 0;
+    state.counters["min_distance_mm"] = r.min_distance_mm;
     state.counters["factor_s_per_frame"] = r.seconds.factor / frames;
     state.counters["evaluate_s_per_frame"] = (r.seconds.evaluate + r.seconds.line_search) / frames;
     state.counters["ccd_s_per_frame"] = r.seconds.max_step / frames;

@@ -264,6 +264,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
   struct Opts {
     std::string scene, builtin, outdir;
     int frames = 0, substeps = 0;
+    int quasi_newton = ClothOptions{}.quasi_newton.max_iterations;
     double max_work = kMaxClothWork;
     bool json = false;
   };
@@ -273,6 +274,11 @@ void add_cloth_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->outdir, "Output directory")->required();
   cmd->add_option("--frames", o->frames, "Frames to simulate (overrides the scene's)")->check(CLI::Range(1, 100000));
   cmd->add_option("--substeps", o->substeps, "Time steps per frame (overrides the scene's)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--quasi-newton", o->quasi_newton,
+                  "L-BFGS iterations allowed per time step before its Newton solve (0 = Newton alone; docs/sim.md, "
+                  "\"Solver\")")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   cmd->add_option("--max-work", o->max_work,
                   "Refuse runs of more garment vertices x frames x substeps than this")
       ->check(positive_number())
@@ -319,6 +325,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
       co.sliding_distance_mm = scene.sliding_distance_mm;
       co.newton.max_iterations = scene.max_newton_iterations;
       co.newton.force_tolerance_mn = scene.force_tolerance_mn;
+      co.quasi_newton.max_iterations = o->quasi_newton;
       note(fmt::format("cloth: {} ({} vertices, {} triangles; body {} vertices), {} frames at {} Hz x {} substeps ...",
                        scene.where, model.num_vertices(), model.num_elements(), L.body.num_vertices(), co.frames,
                        co.frame_rate_hz, co.substeps));
@@ -379,6 +386,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
         json fj = {{"frame", f.frame},
                    {"time_s", f.time_s},
                    {"newton_iterations", f.newton_iterations},
+                   {"quasi_newton_iterations", f.quasi_newton_iterations},
+                   {"factorizations", f.factorizations},
                    {"converged", f.converged},
                    {"solves_at_iteration_limit", f.solves_at_iteration_limit},
                    {"steps", f.steps},
@@ -457,6 +466,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"frames_not_converged", unconverged},
                            {"frames_at_iteration_limit", at_limit},
                            {"newton_iterations", r.newton_iterations},
+                           {"quasi_newton_iterations", r.quasi_newton_iterations},
+                           {"factorizations", r.factorizations},
                            {"steps", r.steps},
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
                            {L.clearance_key.empty() ? "min_arm_clearance_mm" : L.clearance_key,
@@ -506,9 +517,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
       ReportHtmlOptions ro;
       ro.title = "cloth: " + scene.where;
       write_report_html(o->outdir, ro);
-      note(fmt::format("{} frames, {} steps, {} Newton iterations{}; closest distance to the body {:.3g} mm; "
-                       "largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
-                       co.frames, r.steps, r.newton_iterations,
+      note(fmt::format("{} frames, {} steps, {} Newton iterations, {} L-BFGS, {} factorisations{}; closest "
+                       "distance to the body {:.3g} mm; largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
+                       co.frames, r.steps, r.newton_iterations, r.quasi_newton_iterations, r.factorizations,
                        unconverged ? fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
                                                  unconverged, at_limit)
                                    : "",

@@ -43,7 +43,8 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   const int nv = c["setup"]["garment_vertices"].get<int>(), nt = c["setup"]["garment_triangles"].get<int>();
   const int nb = c["setup"]["body_vertices"].get<int>();
   for (size_t f = 1; f < 4; ++f) {
-    EXPECT_GT(c["frames"][f]["newton_iterations"].get<int>(), 0);
+    EXPECT_GT(c["frames"][f]["newton_iterations"].get<int>() + c["frames"][f]["quasi_newton_iterations"].get<int>(), 0);
+    EXPECT_GE(c["frames"][f]["factorizations"].get<int>(), 1);
     EXPECT_GT(c["frames"][f]["min_distance_mm"].get<double>(), 0.0);
     // Signed, to the true capsules: inside by at most the meshes' chord sag.
     EXPECT_GT(c["frames"][f]["min_arm_clearance_mm"].get<double>(), -0.8);
@@ -54,6 +55,7 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   EXPECT_EQ(c["fields"][2]["sliding_mm"].size(), static_cast<size_t>(nv));
   EXPECT_EQ(c["max_stress_kpa_per_triangle"].size(), static_cast<size_t>(nt));
   EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+  EXPECT_GT(c["result"]["quasi_newton_iterations"].get<int>(), 0);  // the L-BFGS phase is on by default
   EXPECT_GT(c["result"]["min_arm_clearance_mm"].get<double>(), -0.8);
   EXPECT_LT(c["result"]["min_arm_clearance_mm"].get<double>(), 5.0);  // the 5 mm clearance at the start
   // The glTF: a valid container, two meshes with frames - 1 morph targets and the right counts.
@@ -131,6 +133,18 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
 
 // The built-in legging, small: the knee angle per frame, the signed
 // clearance to the true leg, every output.
+// --quasi-newton 0: Newton alone, as before the L-BFGS phase.
+TEST_F(ClothCli, QuasiNewtonZeroIsNewtonAlone) {
+  write("scene.json", kSmallSleeve);
+  const CliRun r = run("cloth " + path("scene.json") + " --frames 1 --quasi-newton 0 -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  EXPECT_EQ(c["result"]["quasi_newton_iterations"].get<int>(), 0);
+  EXPECT_GT(c["result"]["newton_iterations"].get<int>(), 0);
+  EXPECT_GE(c["result"]["factorizations"].get<int>(), c["result"]["newton_iterations"].get<int>());
+  EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+}
+
 TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
   write("leg.json", R"({"builtin": "legging", "frames": 2, "frame_rate_hz": 20, "substeps": 2,
     "newton": {"max_iterations": 6},

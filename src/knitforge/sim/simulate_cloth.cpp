@@ -131,6 +131,7 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
   so.contact = o.contact;
   so.newton = o.newton;
   so.projection = o.projection;
+  so.quasi_newton = o.quasi_newton;
 
   ClothResult result;
   result.max_stress_kpa.assign(ne, 0.0);
@@ -203,6 +204,8 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
       state = std::move(r.state);
       if (!body_frames.empty()) body.move_to(pose);
       fr.newton_iterations += r.newton_iterations;
+      fr.quasi_newton_iterations += r.quasi_newton_iterations;
+      fr.factorizations += r.factorizations;
       fr.converged = fr.converged && r.converged;
       fr.solves_at_iteration_limit += r.solves_at_iteration_limit;
       fr.steps += r.substeps;
@@ -217,6 +220,8 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
     measure(fr);
     result.converged = result.converged && fr.converged;
     result.newton_iterations += fr.newton_iterations;
+    result.quasi_newton_iterations += fr.quasi_newton_iterations;
+    result.factorizations += fr.factorizations;
     result.steps += fr.steps;
     result.min_distance_mm = std::min(result.min_distance_mm, fr.min_distance_mm);
     add(result.seconds, fr.seconds);

@@ -119,25 +119,40 @@ bool try_step(SimWorkspace& ws, const SimState& state, const KinematicBody& body
         }
       }
     }
-    const EvaluateEnergy evaluate = [&](const Eigen::VectorXd& y, Derivatives what) {
-      EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
-      add_inertia_energy(model, y, xt, xn, h, ev);
-      add_membrane_energy(model, y, o.projection, ev);
-      add_bending_energy(model, y, ev, o.projection);
-      if (has_body) {
-        const std::vector<ContactPair> pairs = find_contact_candidates(end_body, y, dhat, ws.pinned_vertices());
-        add_contact_energy(model, pairs, end_body, y, o.contact, ev);
-        if (std::isfinite(ev.value)) add_friction_energy(friction, y, xn, h, o.contact, ev);
-      }
-      return ev;
+    // The incremental potential with the element Hessians projected by `projection`.
+    auto potential = [&](PsdProjection projection) {
+      return [&, projection](const Eigen::VectorXd& y, Derivatives what) {
+        EnergyEval ev(model.num_vertices(), what, what == Derivatives::Hessian ? ws.pattern() : nullptr);
+        add_inertia_energy(model, y, xt, xn, h, ev);
+        add_membrane_energy(model, y, projection, ev);
+        add_bending_energy(model, y, ev, projection);
+        if (has_body) {
+          const std::vector<ContactPair> pairs = find_contact_candidates(end_body, y, dhat, ws.pinned_vertices());
+          add_contact_energy(model, pairs, end_body, y, o.contact, ev);
+          if (std::isfinite(ev.value)) add_friction_energy(friction, y, xn, h, o.contact, ev);
+        }
+        return ev;
+      };
     };
+    const EvaluateEnergy evaluate = potential(o.projection);
     const MaxStep max_step = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return has_body ? collision_free_step(end_body, a, b, ws.pinned_vertices()) : 1.0;
     };
+    if (o.quasi_newton.max_iterations > 0) {
+      QuasiNewtonOptions qo = o.quasi_newton;
+      qo.force_tolerance_mn = o.newton.force_tolerance_mn;
+      const QuasiNewtonResult q =
+          quasi_newton_solve(x, ws.fixed_dofs(), evaluate, potential(PsdProjection::Clamp), max_step, qo, ws.solver());
+      x = q.x;
+      out.quasi_newton_iterations += q.iterations;
+      out.factorizations += q.factorizations;
+      accumulate(out.seconds, q.seconds);
+    }
     const NewtonResult r = newton_solve(x, ws.fixed_dofs(), evaluate, max_step, o.newton, ws.solver());
     x = r.x;
     out.converged = out.converged && r.converged;
     out.newton_iterations += r.iterations;
+    out.factorizations += r.factorizations;
     out.solves_at_iteration_limit += r.stop_reason == "iteration limit" ? 1 : 0;
     out.max_force_mn = r.max_force_mn;
     accumulate(out.seconds, r.seconds);
@@ -177,6 +192,8 @@ StepResult step_recursive(SimWorkspace& ws, const SimState& state, const Kinemat
   StepResult second = step_recursive(ws, first.state, mid, body_end, pin_targets, o, 0.5 * h, depth + 1);
   second.converged = second.converged && first.converged;
   second.newton_iterations += first.newton_iterations;
+  second.quasi_newton_iterations += first.quasi_newton_iterations;
+  second.factorizations += first.factorizations;
   second.solves_at_iteration_limit += first.solves_at_iteration_limit;
   second.substeps += first.substeps;
   accumulate(second.seconds, first.seconds);

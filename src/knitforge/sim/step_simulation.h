@@ -14,7 +14,12 @@
 ///  2. friction pairs are built at x_n (lagged normal forces);
 ///  3. newton_solve() minimises the incremental potential (inertia_energy.h)
 ///     with membrane, bending, contact and friction energies, each step of
-///     it limited to the collision-free fraction;
+///     it limited to the collision-free fraction; with
+///     StepOptions::quasi_newton on, the L-BFGS phase of
+///     quasi_newton_solve.h goes first (its initial inverse Hessian the
+///     factor of the Clamp-projected Hessian at the step's start, dominated
+///     by the inertia term M/h²) and Newton finishes from where it stopped:
+///     Newton's criterion decides convergence, as without the phase;
 ///  4. v_{n+1} = (x_{n+1} - x_n) / h.
 /// `friction_iterations` > 1 repeats 2-3 with the normal forces of the
 /// last solution (IPC's lagged iterations).
@@ -72,12 +77,22 @@ struct StepOptions {
   NewtonOptions newton;
   PsdProjection projection = PsdProjection::Clamp;
   int friction_iterations = 1;
+  /// The quasi-Newton phase before each Newton solve (quasi_newton_solve.h;
+  /// off when max_iterations is 0): L-BFGS on the incremental potential
+  /// with the factor of its Clamp-projected Hessian at the start as initial
+  /// inverse Hessian (refreshed when progress stalls), then Newton from
+  /// where it stopped. Its force tolerance is set to Newton's.
+  QuasiNewtonOptions quasi_newton;
 };
 
 struct StepResult {
   SimState state;
   bool converged = false;   ///< every Newton solve of the step converged
   int newton_iterations = 0;
+  int quasi_newton_iterations = 0;  ///< L-BFGS steps before Newton
+  /// Cholesky factorisations (Newton's and the quasi-Newton phase's, failed
+  /// ones included).
+  int factorizations = 0;
   /// Newton solves of the step that stopped at NewtonOptions::max_iterations.
   int solves_at_iteration_limit = 0;
   int substeps = 1;         ///< 1, or more when the body's motion split the step
