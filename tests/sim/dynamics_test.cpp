@@ -14,14 +14,8 @@
 namespace knitforge {
 namespace {
 
-KnitParams square_stitches(double s) {
-  KnitParams p;
-  p.stitch_width = s;
-  p.stitch_height = s;
-  return p;
-}
-
-SimState at_rest(const Eigen::VectorXd& x) { return {x, Eigen::VectorXd::Zero(x.size()), 0.0}; }
+using test::at_rest;
+using test::square_stitches;
 
 double kinetic_energy(const SimModel& model, const Eigen::VectorXd& v) {
   double e = 0.0;

@@ -5,10 +5,23 @@
 
 #include <Eigen/Core>
 
+#include "knitforge/core/knit_params.h"
 #include "knitforge/core/stitch_mesh.h"
+#include "knitforge/sim/sim_state.h"
 #include "knitforge/geometry/vec.h"
 
 namespace knitforge::test {
+
+// Square stitches of s x s mm.
+inline KnitParams square_stitches(double s) {
+  KnitParams p;
+  p.stitch_width = s;
+  p.stitch_height = s;
+  return p;
+}
+
+// At rest at positions x (zero velocity, t = 0).
+inline SimState at_rest(const Eigen::VectorXd& x) { return {x, Eigen::VectorXd::Zero(x.size()), 0.0}; }
 
 // A flat sheet of cols x rows Knit stitches of w x h mm in z = 0, courses
 // along x; vertex (i, j) (column i = 0..cols, row j = 0..rows) has index

@@ -15,14 +15,8 @@
 namespace knitforge {
 namespace {
 
-KnitParams square_stitches(double s) {
-  KnitParams p;
-  p.stitch_width = s;
-  p.stitch_height = s;
-  return p;
-}
-
-SimState at_rest(const Eigen::VectorXd& x) { return {x, Eigen::VectorXd::Zero(x.size()), 0.0}; }
+using test::at_rest;
+using test::square_stitches;
 
 StepOptions with_quasi_newton(StepOptions o, int iterations) {
   o.quasi_newton.max_iterations = iterations;
