@@ -166,17 +166,17 @@ int run_tube_design(const TubeCommandOptions& o) {
       knittable ? report_design_shape(report, o.predict, o.no_evaluate, o.outdir, d.stitch_mesh, params, input,
                                       nullptr, o.ascii)
                 : std::vector<std::string>{};
+  const int pairs = closed_end ? static_cast<int>(closing_pairs(d.map).size()) : 0;
   if (closed_end)
     report["closed_end"] = {{"crown_stitches", d.round_stitches.back()},
-                            {"closing_pairs", static_cast<int>(closing_pairs(d.map).size())},
+                            {"closing_pairs", pairs},
                             {"rim_to_crown_mm", d.rim_to_crown},
                             {"crown_cap_radius_mm", d.crown_radius},
                             {"crown_cap_area_mm2", d.crown_area}};
-  const DesignMachineOptions& mach = o.mach;
   Timer tm;
   bool machine_ok = true;
   nlohmann::json machine_check;
-  report["machine"] = design_machine_end(mach, o.outdir, d.map, knittable, &d.stitch_mesh, machine_ok, machine_check);
+  report["machine"] = design_machine_end(o.mach, o.outdir, d.map, knittable, &d.stitch_mesh, machine_ok, machine_check);
   if (!machine_check.is_null()) report["machine_knittability"] = machine_check;
   const double machine_seconds = tm.seconds();
   report["knittable"] = knittable && machine_ok;
@@ -208,7 +208,7 @@ int run_tube_design(const TubeCommandOptions& o) {
     note(fmt::format("tube: closed at the crown: last round {} stitches ({} pairs joined across the beds and bound "
                      "off), crown {:.1f} mm from the rim, a cap of {:.0f} mm^2 (radius {:.1f} mm) gathered by the "
                      "closing seam",
-                     d.round_stitches.back(), closing_pairs(d.map).size(), d.rim_to_crown, d.crown_area,
+                     d.round_stitches.back(), pairs, d.rim_to_crown, d.crown_area,
                      d.crown_radius));
   for (const std::string& line : shape_notes) note(line);
   if (!knittable) {
@@ -217,7 +217,7 @@ int run_tube_design(const TubeCommandOptions& o) {
     note("the design is NOT knittable (details in report.json); outputs were written for inspection");
     return 1;
   }
-  return machine_exit_code(machine_ok, mach.machine);
+  return machine_exit_code(machine_ok, o.mach.machine);
 }
 
 }  // namespace knitforge::cli

@@ -65,6 +65,14 @@ bool on_rectangle_boundary(double x, double y, double x0, double x1, double y0, 
   return inside && (near(x, x0) || near(x, x1) || near(y, y0) || near(y, y1));
 }
 
+// Total length of the boundary loops (mm).
+double boundary_length(const TriMesh& m, const Halfedges& he) {
+  double total = 0.0;
+  for (const auto& loop : he.boundary_loops())
+    for (size_t i = 0; i < loop.size(); ++i) total += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  return total;
+}
+
 bool has_vertex(const TriMesh& m, const Vec3& p) {
   return std::any_of(m.vertices.begin(), m.vertices.end(), [&](const Vec3& q) { return (q - p).norm() < 1e-12; });
 }
@@ -298,9 +306,8 @@ TEST(Shapes, BeanieIsADomeOnABandClosedAtTheTop) {
   EXPECT_EQ(rep.genus, 0);
   EXPECT_EQ(rep.num_components, 1);
   const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
-  double rim = 0.0, top = 0.0;
-  for (const auto& loop : he.boundary_loops())
-    for (size_t i = 0; i < loop.size(); ++i) rim += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  const double rim = boundary_length(m, he);
+  double top = 0.0;
   for (int v = 0; v < m.num_vertices(); ++v) {
     const Vec3& p = m.vertices[v];
     top = std::max(top, p.z());
@@ -357,9 +364,8 @@ TEST(Shapes, SockIsABentTubeClosedAtTheToe) {
     return Vec3(Vec3(0.0, 0.0, Rb) + Rb * q.normalized());
   };
   const Halfedges he = build_halfedges(m.num_vertices(), m.faces);
-  double rim = 0.0, lo_x = 0.0, hi_x = 0.0, lo_z = 0.0;
-  for (const auto& loop : he.boundary_loops())
-    for (size_t i = 0; i < loop.size(); ++i) rim += (m.vertices[loop[(i + 1) % loop.size()]] - m.vertices[loop[i]]).norm();
+  const double rim = boundary_length(m, he);
+  double lo_x = 0.0, hi_x = 0.0, lo_z = 0.0;
   for (int v = 0; v < m.num_vertices(); ++v) {
     const Vec3& p = m.vertices[v];
     lo_x = std::min(lo_x, p.x());

@@ -208,11 +208,13 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
   // are empty. Within the racking limit it is one transfer (to the other
   // bed) or two (there and back, racked); further, the loop walks over
   // those empty needles, a bed change per transfer, each within the limit.
+  // A walk is announced by a `; bind-off: ... walks to ...` comment.
   // Returns the transfer passes.
   const int max_rack = prof.max_racking;
+  auto parity = [](int n) { return (n % 2 + 2) % 2; };
   const int front_parity = [&] {
     for (int c = 0; c < h; ++c)
-      if (is_stitch(map.at(R - 1, c))) return ((N(R - 1, c)) % 2 + 2) % 2;
+      if (is_stitch(map.at(R - 1, c))) return parity(N(R - 1, c));
     return 0;
   }();
   auto move_loop = [&](bool from_back, int from, bool to_back, int to) {
@@ -230,17 +232,20 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
       hop(to_back, to);
       return passes;
     }
+    if (!(from_back != to_back && std::abs(to - from) <= max_rack))
+      e.comment(fmt::format("bind-off: {}{} walks to {}{} ({} needles, racking <= {})", from_back ? 'b' : 'f', from,
+                            to_back ? 'b' : 'f', to, std::abs(to - from), max_rack));
     while (!(cur_back != to_back && std::abs(to - cur) <= max_rack)) {
       if (max_rack < 1)
         throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking; machine '{}' "
                                        "does not rack; use --bind-off waste",
                                        from_back ? 'b' : 'f', from, to_back ? 'b' : 'f', to, prof.name));
       const bool next_back = !cur_back;
-      const int parity = next_back ? front_parity : 1 - front_parity;  // an empty needle there
+      const int empty_parity = next_back ? front_parity : 1 - front_parity;  // an empty needle there
       const int d = to >= cur ? 1 : -1;
       int k = std::min(max_rack, std::abs(to - cur));
-      if (((cur + d * k) % 2 + 2) % 2 != parity) --k;
-      if (k <= 0) k = ((cur + d) % 2 + 2) % 2 == parity ? 1 : 2;  // beside the target: step over it
+      if (parity(cur + d * k) != empty_parity) --k;
+      if (k <= 0) k = parity(cur + d) == empty_parity ? 1 : 2;  // beside the target: step over it
       if (k > max_rack)
         throw InvalidInput(fmt::format("tube bind-off: moving the loop of {}{} onto {}{} needs racking {}; machine "
                                        "'{}' racks at most {}; use --bind-off waste",
@@ -284,11 +289,7 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
       ++st.transfer_passes;
     }
     // a pair further apart than the racking limit: the back loop walks over
-    for (const auto& [nb, nf] : far) {
-      e.comment(fmt::format("bind-off: closing seam, b{} walks to f{} ({} needles, racking <= {})", nb, nf,
-                            std::abs(nf - nb), max_rack));
-      st.transfer_passes += move_loop(true, nb, false, nf);
-    }
+    for (const auto& [nb, nf] : far) st.transfer_passes += move_loop(true, nb, false, nf);
     e.rack(0);
     // The carrier stands where the last round ended (its seam); it goes to
     // the nearer end of the front bed and joins from there.
@@ -325,9 +326,6 @@ KnitoutProgram write_tube_knitout(const KnittingMap& map, const MachineProfile& 
       const Spot a = chain[k], b = chain[k + 1];
       // within a bed: to the other bed and back racked; across a fold: one
       // transfer; beyond the racking limit: walked over empty needles
-      if (std::abs(a.needle - b.needle) > max_rack)
-        e.comment(fmt::format("bind-off: {}{} walks to {}{} ({} needles, racking <= {})", a.back ? 'b' : 'f',
-                              a.needle, b.back ? 'b' : 'f', b.needle, std::abs(a.needle - b.needle), max_rack));
       st.transfer_passes += move_loop(a.back, a.needle, b.back, b.needle);
       e.rack(0);
       e.knit_on(b.dir, b.back, b.needle, M);
