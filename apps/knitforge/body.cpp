@@ -18,6 +18,7 @@
 
 #include <fmt/core.h>
 
+#include "body_ddr_options.h"
 #include "cli_common.h"
 #include "knitforge/body/body_json.h"
 #include "knitforge/body/body_pose.h"
@@ -547,6 +548,10 @@ void add_body_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"mm", "cm", "m"}));
   transfer->callback([t, &action] { action = [t] { return run_transfer(*t); }; });
   add_body_depth_commands(*body, action);
+  add_body_photo_command(*body, action);
+  // The LibTorch commands run in their own program (knitforge-ddr).
+  const auto forward = [](const auto&) -> int { run_sibling_program("knitforge-ddr"); };
+  add_body_ddr_commands(*body, action, {forward, forward, forward});
 }
 
 }  // namespace knitforge::cli

@@ -29,15 +29,6 @@ namespace knitforge::cli {
 
 namespace {
 
-nlohmann::json read_json_file(const std::string& path, const std::string& what) {
-  const std::string text = read_text_file(path, what);
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InvalidInput(fmt::format("{}: not valid JSON ({})", path, e.what()));
-  }
-}
-
 DepthCamera read_camera(const std::string& path) { return depth_camera_from_json(read_json_file(path, "camera intrinsics"), path); }
 
 std::string parse_size3(const std::string& text, BoardSize& size) {

@@ -417,6 +417,15 @@ void write_report_json(const std::string& path, const nlohmann::json& report, bo
   if (print) std::fputs(text.c_str(), stdout);
 }
 
+nlohmann::json read_json_file(const std::string& path, const std::string& what) {
+  const std::string text = read_text_file(path, what);
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InvalidInput(fmt::format("{}: not valid JSON ({})", path, e.what()));
+  }
+}
+
 std::string read_text_file(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOError(fmt::format("{}: cannot open the {}", path, what));

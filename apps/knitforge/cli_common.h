@@ -52,7 +52,25 @@ void add_predict_command(CLI::App& app, Action& action);
 void add_body_command(CLI::App& app, Action& action);
 /// body render-depth / calibrate / fuse (body_depth.cpp), on the body command.
 void add_body_depth_commands(CLI::App& body, Action& action);
+/// body render-photo (body_photo.cpp), on the body command.
+void add_body_photo_command(CLI::App& body, Action& action);
 void add_cloth_command(CLI::App& app, Action& action);
+
+/// Remembers the command line (main() calls it first): run_sibling_program()
+/// hands it on.
+void set_command_line(int argc, char** argv);
+
+/// Parses the command line with `app` and runs the chosen `action`: exit 0
+/// on success, 1 for an input error or failed check, 2 for a usage error,
+/// each error one line "knitforge: ..." on stderr.
+int run_command_line(CLI::App& app, const Action& action, int argc, char** argv);
+
+/// Replaces this process by the program `name` in knitforge's own
+/// directory, with the same command line (how `knitforge body ddr-train |
+/// ddr-evaluate | reconstruct` run knitforge-ddr, the only program that
+/// loads LibTorch). Returns only by throwing.
+/// \throw IOError when the program is missing or cannot be run.
+[[noreturn]] void run_sibling_program(const std::string& name);
 
 /// A usage error found after parsing (a missing, empty or malformed
 /// argument): the program exits 2, like CLI11's own parse errors.
@@ -107,6 +125,10 @@ nlohmann::json newton_history_json(const std::vector<NewtonIterate>& history);
 /// Parses "WxH" (millimetres, e.g. "3.5x2.8") into KnitParams.
 /// \throw InvalidInput naming the option when malformed or not positive.
 KnitParams parse_stitch_size(const std::string& text);
+
+/// A JSON file (`what` names it in the error).
+/// \throw IOError when it cannot be read; InvalidInput when it is not JSON.
+nlohmann::json read_json_file(const std::string& path, const std::string& what);
 
 /// Scale factor from a unit name ("mm", "cm", "m") to millimetres.
 double unit_scale(const std::string& units);

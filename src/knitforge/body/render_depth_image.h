@@ -5,11 +5,8 @@
 /// data with known answers (synthetic_depth_scenes.h, `knitforge body
 /// render-depth`).
 ///
-/// A z-buffer rasteriser: each face is projected into the image; every
-/// pixel centre inside it (edges inclusive) gets the face's z-depth at that
-/// pixel, the nearest face winning. For a planar triangle 1/z is an affine
-/// function of (u, v), so the depth is the exact z of the ray's hit
-/// (perspective-correct interpolation of 1/z), up to rounding.
+/// A z-buffer (rasterize_mesh.h): each pixel gets the depth of its nearest
+/// fragment, the exact z of the pixel ray's first hit up to rounding.
 
 #include "knitforge/body/depth_image.h"
 #include "knitforge/evaluate/rigid_align.h"
