@@ -177,12 +177,16 @@ void label_smpl_body(BodyModel& m) {
   const double thigh = 0.5 * (len(kLHip, kLKnee) + len(kRHip, kRKnee));
   const double crotch_z = hips_z - 0.2386 * thigh;
 
+  // Each arm: its bone directions and "above" = up made perpendicular to
+  // the upper arm (up itself for a horizontal arm).
   struct Arm {
-    Vec3 shoulder, bone, wrist, forearm;
+    Vec3 shoulder, bone, above, wrist, forearm;
     double upper_len, fore_len;
   };
   auto arm = [&](int sh, int el, int wr) {
-    return Arm{jt(sh), (jt(el) - jt(sh)).normalized(), jt(wr), (jt(wr) - jt(el)).normalized(), len(sh, el), len(el, wr)};
+    const Vec3 b = (jt(el) - jt(sh)).normalized();
+    return Arm{jt(sh), b, (up - up.dot(b) * b).normalized(), jt(wr), (jt(wr) - jt(el)).normalized(), len(sh, el),
+               len(el, wr)};
   };
   const std::array<Arm, 2> arms = {arm(kLShoulder, kLElbow, kLWrist), arm(kRShoulder, kRElbow, kRWrist)};
   const std::array<double, 2> foot_z = {jt(kLAnkle).z() + 0.1045 * len(kLKnee, kLAnkle),
@@ -222,8 +226,8 @@ void label_smpl_body(BodyModel& m) {
     for (int s = 0; s < 2; ++s) {
       const Arm& a = arms[static_cast<size_t>(s)];
       const Vec3 d = p - a.shoulder;
-      arm_f[static_cast<size_t>(s)] = cap(std::min(d.dot(a.bone) - 0.14 * d.dot(up) + 0.0093 * a.upper_len,
-                                                   d.dot(up) + 0.571 * a.upper_len),
+      arm_f[static_cast<size_t>(s)] = cap(std::min(d.dot(a.bone) - 0.14 * d.dot(a.above) + 0.0093 * a.upper_len,
+                                                   d.dot(a.above) + 0.571 * a.upper_len),
                                           w_arm[static_cast<size_t>(s)], i);
       const double past_wrist = (p - a.wrist).dot(a.forearm) - 0.0333 * a.fore_len;
       const BodyPart hand = s == 0 ? BodyPart::LeftHand : BodyPart::RightHand;

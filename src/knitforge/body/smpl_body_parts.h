@@ -25,8 +25,8 @@
 ///    that plane and one just below the neck joint, within 1.75 times the
 ///    neck's half-width (at the neck landmark's height) of the median plane; each arm beyond a plane
 ///    through the shoulder across the upper arm (tilted 8° so the armpit
-///    side reaches in further) and above 0.57 upper-arm lengths below the
-///    shoulder, its hand beyond a plane across the forearm just past the
+///    side reaches in further) and above a plane along the upper arm 0.57
+///    upper-arm lengths below the shoulder (cutting off the torso's side), its hand beyond a plane across the forearm just past the
 ///    wrist, its sleeve the rest; each leg below a plane through the crotch
 ///    height (0.24 thigh lengths below the hips) rising outwards with slope
 ///    0.55, on its side of the median plane, its foot below 0.10 shin
