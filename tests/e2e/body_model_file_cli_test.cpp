@@ -102,6 +102,21 @@ TEST_F(Cli, SmplModelFileGetsGarmentRegions) {
   const double a = total_area(panel), b = total_area(read_mesh(path("builtin_panel.obj")));
   std::printf("torso-front panel: %.0f cm² (model file) vs %.0f cm² (built-in)\n", a / 100.0, b / 100.0);
   EXPECT_NEAR(a, b, 0.03 * b);
+  // body fit with the file: the fitter ignores head, hands and feet, the
+  // fit is measured, the scan's vertices get parts, and body region cuts the
+  // panel out of the scan.
+  r = run("body fit " + path("body.obj") + " --model " + model + " --objective scan -o " + path("fitted"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto fit = nlohmann::json::parse(slurp(path("fitted/params.json")));
+  EXPECT_LT(fit["fit"]["rms_mm"].get<double>(), 1.0);
+  ASSERT_TRUE(fit.contains("measurements_mm"));
+  EXPECT_NEAR(fit["measurements_mm"]["chest_girth"].get<double>(), made["measurements_mm"]["chest_girth"].get<double>(), 5.0);
+  EXPECT_EQ(slurp(path("fitted/vertex_error.csv")).rfind("vertex,error_mm,part\n", 0), 0u);
+  EXPECT_NE(slurp(path("fitted/scan_parts.csv")).find(",torso-front\n"), std::string::npos);
+  r = run("body region " + path("fitted") + " --model " + model + " --part torso-back -o " + path("back.obj"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(validate_surface(read_mesh(path("back.obj"))).is_disk);
+
   // A body of another model file given without its --model.
   const std::string tube = write_bytes(path("tube.npz"), test::smpl_test_npz(test::smpl_test_arrays()));
   r = run("body make --model " + tube + " -o " + path("tube.obj"));
