@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <map>
+#include <numbers>
 
 #include <fmt/core.h>
 
@@ -19,6 +20,7 @@
 #include "knitforge/body/cut_body_region.h"
 #include "knitforge/body/generated_body.h"
 #include "knitforge/body/shape_body.h"
+#include "knitforge/body/skin_body.h"
 #include "knitforge/body/smpl_model_npz.h"
 #include "knitforge/util/errors.h"
 
@@ -241,4 +243,23 @@ TEST(SmplBodyParts, AnUnmappedJointLayoutIsRefusedWithWhatIsMissing) {
   const BodyModel bare = load_smpl_model(dir.path("ours.npz"), no);
   EXPECT_TRUE(bare.vertex_parts.empty());
   EXPECT_FALSE(bare.labels_note.empty());
+}
+
+// A template whose arms hang lower than our T-pose (SMPL's templates hold
+// them about horizontal): the cuts turn with the upper arm. Measured, per
+// part at least: 5° 98.9 %, 10° 97.9 %, 20° 96.0 %, 30° 93.2 % (torso-front
+// losing its top at the shoulders to the sleeves).
+TEST(SmplBodyParts, ArmsBelowHorizontalKeepTheirLabels) {
+  const BodyModel& ours = generated_body();
+  TempDir dir;
+  for (double deg : {10.0, 20.0}) {
+    BodyParams p = zero_params(ours);
+    const double a = deg * std::numbers::pi / 180.0;
+    p.joint_rotations[static_cast<size_t>(ours.joint_index("left_shoulder"))] = Vec3(0, a, 0);
+    p.joint_rotations[static_cast<size_t>(ours.joint_index("right_shoulder"))] = Vec3(0, -a, 0);
+    const PosedBody posed = pose_body(ours, p);
+    const BodyModel loaded = load_written(dir, "posed.npz", generated_body_smpl_npz(ours, SmplLayout::Smpl24, posed.vertices));
+    ASSERT_TRUE(loaded.labels_note.empty()) << loaded.labels_note;
+    expect_parts_agree(ours, loaded, 0.95, fmt::format("arms {} deg", deg).c_str());
+  }
 }
