@@ -45,7 +45,8 @@ inline std::string generated_body_smpl_npz(const BodyModel& model, SmplLayout la
   auto nearest = [&](const Vec3& p) {
     int best = 0;
     for (int i = 1; i < V; ++i)
-      if ((tv[static_cast<size_t>(i)] - p).squaredNorm() < (tv[static_cast<size_t>(best)] - p).squaredNorm()) best = i;
+      if ((tv[static_cast<size_t>(i)] - p).squaredNorm() < (tv[static_cast<size_t>(best)] - p).squaredNorm())
+        best = i;
     return best;
   };
   std::vector<Vec3> J0(static_cast<size_t>(model.num_joints()), Vec3::Zero());
@@ -58,10 +59,13 @@ inline std::string generated_body_smpl_npz(const BodyModel& model, SmplLayout la
   std::vector<int> from(24, -1);
   for (int s = 0; s < 24; ++s) {
     const std::string& n = smpl[static_cast<size_t>(s)];
-    if (n == "spine3") from[static_cast<size_t>(s)] = ours("spine2");
-    else if (n != "spine2" && model.joint_index(n) >= 0) from[static_cast<size_t>(s)] = model.joint_index(n);
+    if (n == "spine3")
+      from[static_cast<size_t>(s)] = ours("spine2");
+    else if (n != "spine2" && model.joint_index(n) >= 0)
+      from[static_cast<size_t>(s)] = model.joint_index(n);
   }
-  const std::vector<int> smpl_parents = {-1, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
+  const std::vector<int> smpl_parents = {-1, 0, 0, 0,  1,  2,  3,  4,  5,  6,  7,  8,
+                                         9,  9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
   std::vector<int> parents;
   int J = 24;
   if (layout == SmplLayout::Smpl24) {
@@ -89,8 +93,10 @@ inline std::string generated_body_smpl_npz(const BodyModel& model, SmplLayout la
     for (RowSparse::InnerIterator it(model.joint_regressor, ours_j); it; ++it)
       reg[static_cast<size_t>(s) * static_cast<size_t>(V) + static_cast<size_t>(it.col())] += f * it.value();
   };
-  const Vec3 lw = J0[static_cast<size_t>(ours("left_wrist"))], rw = J0[static_cast<size_t>(ours("right_wrist"))];
-  const Vec3 la = J0[static_cast<size_t>(ours("left_ankle"))], ra = J0[static_cast<size_t>(ours("right_ankle"))];
+  const Vec3 lw = J0[static_cast<size_t>(ours("left_wrist"))],
+             rw = J0[static_cast<size_t>(ours("right_wrist"))];
+  const Vec3 la = J0[static_cast<size_t>(ours("left_ankle"))],
+             ra = J0[static_cast<size_t>(ours("right_ankle"))];
   auto ancestor_in = [&](int s, std::initializer_list<int> roots) {
     for (int q = s; q >= 0; q = parents[static_cast<size_t>(q)])
       for (int r : roots)
@@ -108,29 +114,44 @@ inline std::string generated_body_smpl_npz(const BodyModel& model, SmplLayout la
       // hands and fingers past the wrists, face joints in the face.
       Vec3 at;
       switch (ancestor_in(s, {7, 8, 20, 21, 15})) {
-        case 7: at = la + Vec3(0, -120, -40); break;
-        case 8: at = ra + Vec3(0, -120, -40); break;
-        case 20: at = lw + Vec3(90, 0, 0); break;
-        case 21: at = rw + Vec3(-90, 0, 0); break;
-        default: at = J0[static_cast<size_t>(ours("head"))] + Vec3(0, -60, 40); break;
+        case 7:
+          at = la + Vec3(0, -120, -40);
+          break;
+        case 8:
+          at = ra + Vec3(0, -120, -40);
+          break;
+        case 20:
+          at = lw + Vec3(90, 0, 0);
+          break;
+        case 21:
+          at = rw + Vec3(-90, 0, 0);
+          break;
+        default:
+          at = J0[static_cast<size_t>(ours("head"))] + Vec3(0, -60, 40);
+          break;
       }
       reg[static_cast<size_t>(s) * static_cast<size_t>(V) + static_cast<size_t>(nearest(at))] = 1.0;
     }
   }
 
-  std::vector<double> vt, sd(static_cast<size_t>(V) * 3 * static_cast<size_t>(K)), w(static_cast<size_t>(V) * static_cast<size_t>(J), 0.0);
+  std::vector<double> vt, sd(static_cast<size_t>(V) * 3 * static_cast<size_t>(K)),
+      w(static_cast<size_t>(V) * static_cast<size_t>(J), 0.0);
   for (int i = 0; i < V; ++i) {
     const Vec3 p = Ct * tv[static_cast<size_t>(i)] / 1000.0;
     vt.insert(vt.end(), {p.x(), p.y(), p.z()});
     for (int k = 0; k < K; ++k) {
       const Vec3 d = Ct * Vec3(model.shape_basis.block<3, 1>(3 * i, k)) / 1000.0;
-      for (int c = 0; c < 3; ++c) sd[(3 * static_cast<size_t>(i) + static_cast<size_t>(c)) * static_cast<size_t>(K) + static_cast<size_t>(k)] = d(c);
+      for (int c = 0; c < 3; ++c)
+        sd[(3 * static_cast<size_t>(i) + static_cast<size_t>(c)) * static_cast<size_t>(K) +
+           static_cast<size_t>(k)] = d(c);
     }
   }
   for (int s = 0; s < J; ++s) {
     const int o = from[static_cast<size_t>(s)];
     if (o < 0) continue;
-    for (int i = 0; i < V; ++i) w[static_cast<size_t>(i) * static_cast<size_t>(J) + static_cast<size_t>(s)] = model.skinning_weights.coeff(i, o);
+    for (int i = 0; i < V; ++i)
+      w[static_cast<size_t>(i) * static_cast<size_t>(J) + static_cast<size_t>(s)] =
+          model.skinning_weights.coeff(i, o);
   }
   std::vector<int64_t> f, kt(2 * static_cast<size_t>(J));
   for (const auto& t : model.faces) f.insert(f.end(), {t[0], t[1], t[2]});
@@ -140,7 +161,8 @@ inline std::string generated_body_smpl_npz(const BodyModel& model, SmplLayout la
   }
   std::vector<ZipEntry> entries = {
       {"v_template.npy", npy_f8({V, 3}, vt), true},
-      {"f.npy", npy_bytes("<u4", {static_cast<int64_t>(model.faces.size()), 3}, raw_bytes<uint32_t>(f)), false},
+      {"f.npy", npy_bytes("<u4", {static_cast<int64_t>(model.faces.size()), 3}, raw_bytes<uint32_t>(f)),
+       false},
       {"shapedirs.npy", npy_f8({V, 3, K}, sd), true},
       {"J_regressor.npy", npy_f8({J, V}, reg), false},
       {"kintree_table.npy", npy_i8({2, J}, kt), false},

@@ -50,7 +50,8 @@ void expect_parts_agree(const BodyModel& ours, const BodyModel& loaded, double l
   ASSERT_EQ(loaded.vertex_parts.size(), ours.vertex_parts.size()) << loaded.labels_note;
   const auto a = agreement(ours, loaded);
   for (int q = 0; q < kNumBodyParts; ++q) {
-    std::printf("%s: %-12s %.4f\n", what, body_part_name(static_cast<BodyPart>(q)).c_str(), a[static_cast<size_t>(q)]);
+    std::printf("%s: %-12s %.4f\n", what, body_part_name(static_cast<BodyPart>(q)).c_str(),
+                a[static_cast<size_t>(q)]);
     EXPECT_GE(a[static_cast<size_t>(q)], least) << what << ": " << body_part_name(static_cast<BodyPart>(q));
   }
   // Where the labels differ: ours -> loaded, counts.
@@ -72,7 +73,10 @@ TEST(SmplBodyParts, OurBodyInSmplLayoutGetsItsOwnLabelsBack) {
   ASSERT_EQ(loaded.num_joints(), 24);
   ASSERT_TRUE(loaded.labels_note.empty()) << loaded.labels_note;
   for (int i = 0; i < ours.num_vertices(); ++i)
-    ASSERT_LT((loaded.template_vertices[static_cast<size_t>(i)] - ours.template_vertices[static_cast<size_t>(i)]).norm(), 1e-6);
+    ASSERT_LT(
+        (loaded.template_vertices[static_cast<size_t>(i)] - ours.template_vertices[static_cast<size_t>(i)])
+            .norm(),
+        1e-6);
 
   expect_parts_agree(ours, loaded, 0.999, "template");
   // The fields: same sign almost everywhere, roughly the same mm.
@@ -101,11 +105,13 @@ TEST(SmplBodyParts, OurBodyInSmplLayoutGetsItsOwnLabelsBack) {
   }
   // Measurements of the loaded model (betas 0) against ours at the template.
   const BodyMeasurements mo = measure_body(ours, shape_body(ours, Eigen::VectorXd::Zero(ours.num_shapes())));
-  const BodyMeasurements ml = measure_body(loaded, shape_body(loaded, Eigen::VectorXd::Zero(loaded.num_shapes())));
+  const BodyMeasurements ml =
+      measure_body(loaded, shape_body(loaded, Eigen::VectorXd::Zero(loaded.num_shapes())));
   for (int k = 0; k < kNumMeasurements; ++k) {
     std::printf("%-18s ours %.1f loaded %.1f mm\n", measurement_info(static_cast<Measurement>(k)).key,
                 mo[static_cast<size_t>(k)], ml[static_cast<size_t>(k)]);
-    EXPECT_NEAR(ml[static_cast<size_t>(k)], mo[static_cast<size_t>(k)], 0.5) << measurement_info(static_cast<Measurement>(k)).key;
+    EXPECT_NEAR(ml[static_cast<size_t>(k)], mo[static_cast<size_t>(k)], 0.5)
+        << measurement_info(static_cast<Measurement>(k)).key;
   }
 }
 
@@ -125,18 +131,22 @@ TEST(SmplBodyParts, LabelsFollowTheShape) {
   set(Measurement::ThighGirth, 60.0);
   const ShapedBody shaped = shape_body(ours, shape);
   TempDir dir;
-  const BodyModel loaded = load_written(dir, "shaped.npz", generated_body_smpl_npz(ours, SmplLayout::Smpl24, shaped.vertices));
+  const BodyModel loaded =
+      load_written(dir, "shaped.npz", generated_body_smpl_npz(ours, SmplLayout::Smpl24, shaped.vertices));
   ASSERT_TRUE(loaded.labels_note.empty()) << loaded.labels_note;
   expect_parts_agree(ours, loaded, 0.95, "shaped");
   const BodyMeasurements mo = measure_body(ours, shaped);
-  const BodyMeasurements ml = measure_body(loaded, shape_body(loaded, Eigen::VectorXd::Zero(loaded.num_shapes())));
+  const BodyMeasurements ml =
+      measure_body(loaded, shape_body(loaded, Eigen::VectorXd::Zero(loaded.num_shapes())));
   for (int k = 0; k < kNumMeasurements; ++k) {
     std::printf("shaped %-18s ours %.1f loaded %.1f mm\n", measurement_info(static_cast<Measurement>(k)).key,
                 mo[static_cast<size_t>(k)], ml[static_cast<size_t>(k)]);
-    EXPECT_NEAR(ml[static_cast<size_t>(k)], mo[static_cast<size_t>(k)], 20.0) << measurement_info(static_cast<Measurement>(k)).key;
+    EXPECT_NEAR(ml[static_cast<size_t>(k)], mo[static_cast<size_t>(k)], 20.0)
+        << measurement_info(static_cast<Measurement>(k)).key;
   }
   // A garment region of the loaded model cuts as a disk.
-  const BodyRegion front = cut_body_region(loaded.template_mesh(), body_part_field(loaded, BodyPart::TorsoFront));
+  const BodyRegion front =
+      cut_body_region(loaded.template_mesh(), body_part_field(loaded, BodyPart::TorsoFront));
   EXPECT_GT(front.area_mm2, 1e5);
 }
 
@@ -158,7 +168,8 @@ TEST(SmplBodyParts, ALimbsLabelNeedsItsWeights) {
       ++hand;
       continue;
     }
-    for (RowSparse::InnerIterator it(moved.skinning_weights, i); it; ++it) trip.emplace_back(i, static_cast<int>(it.col()), it.value());
+    for (RowSparse::InnerIterator it(moved.skinning_weights, i); it; ++it)
+      trip.emplace_back(i, static_cast<int>(it.col()), it.value());
   }
   ASSERT_GT(hand, 50);
   moved.skinning_weights.setFromTriplets(trip.begin(), trip.end());
@@ -178,7 +189,8 @@ TEST(SmplBodyParts, ALimbsLabelNeedsItsWeights) {
   const BodyModel& ours = generated_body();
   int changed = 0;
   for (int i = 0; i < ours.num_vertices(); ++i) {
-    if (!moved_fingers(i) && loaded.vertex_parts[static_cast<size_t>(i)] != ours.vertex_parts[static_cast<size_t>(i)])
+    if (!moved_fingers(i) &&
+        loaded.vertex_parts[static_cast<size_t>(i)] != ours.vertex_parts[static_cast<size_t>(i)])
       ++changed;
   }
   EXPECT_EQ(changed, 0);
@@ -188,7 +200,8 @@ TEST(SmplBodyParts, SmplHAndSmplXLayoutsMapTheirFirst22Joints) {
   const BodyModel& ours = generated_body();
   TempDir dir;
   for (const auto& [layout, J] : {std::pair{SmplLayout::SmplH52, 52}, std::pair{SmplLayout::SmplX55, 55}}) {
-    const BodyModel loaded = load_written(dir, fmt::format("m{}.npz", J), generated_body_smpl_npz(ours, layout));
+    const BodyModel loaded =
+        load_written(dir, fmt::format("m{}.npz", J), generated_body_smpl_npz(ours, layout));
     ASSERT_EQ(loaded.num_joints(), J);
     EXPECT_EQ(loaded.joint_names[21], "right_wrist");
     EXPECT_EQ(loaded.joint_names[22], "joint_22");
@@ -202,20 +215,23 @@ TEST(SmplBodyParts, AnUnmappedJointLayoutIsRefusedWithWhatIsMissing) {
   const BodyModel& ours = generated_body();
   TempDir dir;
   // 25 joints: loads (it can be posed and fitted) but has no labels.
-  const BodyModel loaded = load_written(dir, "odd.npz", generated_body_smpl_npz(ours, SmplLayout::Unmapped25));
+  const BodyModel loaded =
+      load_written(dir, "odd.npz", generated_body_smpl_npz(ours, SmplLayout::Unmapped25));
   EXPECT_EQ(loaded.num_joints(), 25);
   EXPECT_TRUE(loaded.vertex_parts.empty());
   EXPECT_TRUE(loaded.part_fields.empty());
   EXPECT_TRUE(loaded.landmarks.empty());
   EXPECT_NE(loaded.labels_note.find("odd.npz"), std::string::npos) << loaded.labels_note;
   EXPECT_NE(loaded.labels_note.find("not SMPL's body joints"), std::string::npos) << loaded.labels_note;
-  EXPECT_NE(loaded.labels_note.find("missing or elsewhere: pelvis, left_hip"), std::string::npos) << loaded.labels_note;
+  EXPECT_NE(loaded.labels_note.find("missing or elsewhere: pelvis, left_hip"), std::string::npos)
+      << loaded.labels_note;
   BodyModel copy = loaded;
   try {
     label_smpl_body(copy);
     ADD_FAILURE() << "labelled";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot be given part labels and landmarks"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot be given part labels and landmarks"), std::string::npos)
+        << e.what();
   }
   // What needs the labels refuses with the reason.
   try {
@@ -258,7 +274,8 @@ TEST(SmplBodyParts, ArmsBelowHorizontalKeepTheirLabels) {
     p.joint_rotations[static_cast<size_t>(ours.joint_index("left_shoulder"))] = Vec3(0, a, 0);
     p.joint_rotations[static_cast<size_t>(ours.joint_index("right_shoulder"))] = Vec3(0, -a, 0);
     const PosedBody posed = pose_body(ours, p);
-    const BodyModel loaded = load_written(dir, "posed.npz", generated_body_smpl_npz(ours, SmplLayout::Smpl24, posed.vertices));
+    const BodyModel loaded =
+        load_written(dir, "posed.npz", generated_body_smpl_npz(ours, SmplLayout::Smpl24, posed.vertices));
     ASSERT_TRUE(loaded.labels_note.empty()) << loaded.labels_note;
     expect_parts_agree(ours, loaded, 0.95, fmt::format("arms {} deg", deg).c_str());
   }

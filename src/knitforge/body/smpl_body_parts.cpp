@@ -14,13 +14,15 @@ namespace knitforge {
 namespace {
 
 // SMPL's joint order (smpl_joint_names()).
+// clang-format off
 enum SmplJoint : int {
   kPelvis = 0, kLHip, kRHip, kSpine1, kLKnee, kRKnee, kSpine2, kLAnkle, kRAnkle, kSpine3, kLFoot, kRFoot,
   kNeck, kLCollar, kRCollar, kHead, kLShoulder, kRShoulder, kLElbow, kRElbow, kLWrist, kRWrist,
   kNumBodyJoints  // 22: the body joints SMPL, SMPL+H and SMPL-X share
 };
 constexpr std::array<int, kNumBodyJoints> kSmplParents = {-1, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7,
-                                                           8, 9, 9, 9, 12, 13, 14, 16, 17, 18, 19};
+                                                          8, 9, 9, 9, 12, 13, 14, 16, 17, 18, 19};
+// clang-format on
 
 // The bones whose length or direction the derivation uses.
 constexpr std::array<std::array<int, 2>, 10> kUsedBones = {{{kNeck, kHead},
@@ -65,7 +67,8 @@ std::vector<double> chain_weight(const BodyModel& m, const std::vector<char>& ch
 int closest_vertex(const std::vector<Vec3>& v, const Vec3& p) {
   int best = 0;
   for (int i = 1; i < static_cast<int>(v.size()); ++i)
-    if ((v[static_cast<size_t>(i)] - p).squaredNorm() < (v[static_cast<size_t>(best)] - p).squaredNorm()) best = i;
+    if ((v[static_cast<size_t>(i)] - p).squaredNorm() < (v[static_cast<size_t>(best)] - p).squaredNorm())
+      best = i;
   return best;
 }
 
@@ -95,9 +98,10 @@ std::string smpl_body_parts_missing(const BodyModel& m) {
       missing += (missing.empty() ? "" : ", ") + name;
   }
   if (!missing.empty())
-    return fmt::format("its joints ({}: {}, ...) are not SMPL's body joints in SMPL's order (joint 0-21 must be "
-                       "pelvis .. right_wrist as in SMPL, SMPL+H and SMPL-X); missing or elsewhere: {}",
-                       m.num_joints(), m.joint_names.empty() ? "" : m.joint_names.front(), missing);
+    return fmt::format(
+        "its joints ({}: {}, ...) are not SMPL's body joints in SMPL's order (joint 0-21 must be "
+        "pelvis .. right_wrist as in SMPL, SMPL+H and SMPL-X); missing or elsewhere: {}",
+        m.num_joints(), m.joint_names.empty() ? "" : m.joint_names.front(), missing);
   for (int j = 1; j < kNumBodyJoints; ++j) {
     if (m.parents[static_cast<size_t>(j)] != kSmplParents[static_cast<size_t>(j)])
       return fmt::format("its kinematic tree is not SMPL's: joint {} ('{}') has parent {}, SMPL's is {}", j,
@@ -107,17 +111,20 @@ std::string smpl_body_parts_missing(const BodyModel& m) {
   const std::vector<Vec3> J = rest_joints(m);
   for (const auto& [a, b] : kUsedBones) {
     if (!((J[static_cast<size_t>(b)] - J[static_cast<size_t>(a)]).norm() > 1.0))
-      return fmt::format("its rest joints '{}' and '{}' are {:.2f} mm apart: that bone is needed to place the part "
-                         "boundaries",
-                         m.joint_names[static_cast<size_t>(a)], m.joint_names[static_cast<size_t>(b)],
-                         (J[static_cast<size_t>(b)] - J[static_cast<size_t>(a)]).norm());
+      return fmt::format(
+          "its rest joints '{}' and '{}' are {:.2f} mm apart: that bone is needed to place the part "
+          "boundaries",
+          m.joint_names[static_cast<size_t>(a)], m.joint_names[static_cast<size_t>(b)],
+          (J[static_cast<size_t>(b)] - J[static_cast<size_t>(a)]).norm());
   }
   const auto z = [&](int j) { return J[static_cast<size_t>(j)].z(); };
   const auto x = [&](int j) { return J[static_cast<size_t>(j)].x(); };
   if (!(z(kHead) > z(kNeck) && z(kNeck) > z(kPelvis) && z(kPelvis) > z(kLKnee) && z(kLKnee) > z(kLAnkle) &&
-        z(kRKnee) > z(kRAnkle) && x(kLHip) > x(kRHip) && x(kLShoulder) > x(kRShoulder) && x(kLWrist) > x(kLElbow) &&
-        x(kLElbow) > x(kLShoulder) && x(kRWrist) < x(kRElbow) && x(kRElbow) < x(kRShoulder)))
-    return "its rest pose is not an upright T-pose in knitforge's axes (z up, left side +x: head above neck above "
+        z(kRKnee) > z(kRAnkle) && x(kLHip) > x(kRHip) && x(kLShoulder) > x(kRShoulder) &&
+        x(kLWrist) > x(kLElbow) && x(kLElbow) > x(kLShoulder) && x(kRWrist) < x(kRElbow) &&
+        x(kRElbow) < x(kRShoulder)))
+    return "its rest pose is not an upright T-pose in knitforge's axes (z up, left side +x: head above neck "
+           "above "
            "pelvis above knees above ankles, left joints at larger x, arms out to the sides)";
   return {};
 }
@@ -125,7 +132,8 @@ std::string smpl_body_parts_missing(const BodyModel& m) {
 void label_smpl_body(BodyModel& m) {
   const std::string missing = smpl_body_parts_missing(m);
   if (!missing.empty())
-    throw InvalidInput(fmt::format("body model '{}' cannot be given part labels and landmarks: {}", m.name, missing));
+    throw InvalidInput(
+        fmt::format("body model '{}' cannot be given part labels and landmarks: {}", m.name, missing));
   const std::vector<Vec3> J = rest_joints(m);
   const auto& v = m.template_vertices;
   const int V = m.num_vertices();
@@ -169,9 +177,10 @@ void label_smpl_body(BodyModel& m) {
     if (std::abs(p.z() - neck_level) < 15.0 && std::abs(p.x() - xc) < shoulders_half)
       neck_radius = std::max(neck_radius, std::abs(p.x() - xc));
   if (!(neck_radius > 0.0))
-    throw InvalidInput(fmt::format("body model '{}' cannot be given part labels: no vertex at the neck's height ({:.0f} "
-                                   "mm) between the shoulders",
-                                   m.name, neck_level));
+    throw InvalidInput(
+        fmt::format("body model '{}' cannot be given part labels: no vertex at the neck's height ({:.0f} "
+                    "mm) between the shoulders",
+                    m.name, neck_level));
   const double neck_half_width = 1.75 * neck_radius;
   const double hips_z = 0.5 * (jt(kLHip).z() + jt(kRHip).z());
   const double thigh = 0.5 * (len(kLHip, kLKnee) + len(kRHip, kRKnee));
@@ -185,8 +194,9 @@ void label_smpl_body(BodyModel& m) {
   };
   auto arm = [&](int sh, int el, int wr) {
     const Vec3 b = (jt(el) - jt(sh)).normalized();
-    return Arm{jt(sh), b, (up - up.dot(b) * b).normalized(), jt(wr), (jt(wr) - jt(el)).normalized(), len(sh, el),
-               len(el, wr)};
+    return Arm{
+        jt(sh),      b,          (up - up.dot(b) * b).normalized(), jt(wr), (jt(wr) - jt(el)).normalized(),
+        len(sh, el), len(el, wr)};
   };
   const std::array<Arm, 2> arms = {arm(kLShoulder, kLElbow, kLWrist), arm(kRShoulder, kRElbow, kRWrist)};
   const std::array<double, 2> foot_z = {jt(kLAnkle).z() + 0.1045 * len(kLKnee, kLAnkle),
@@ -211,8 +221,9 @@ void label_smpl_body(BodyModel& m) {
     return std::min(f, kWeightCap * (w[static_cast<size_t>(i)] - kWeightFloor));
   };
 
-  m.part_fields.assign(static_cast<size_t>(kNumBodyParts), std::vector<double>(static_cast<size_t>(V)));
-  m.vertex_parts.assign(static_cast<size_t>(V), BodyPart::TorsoFront);
+  std::vector<std::vector<double>> fields(static_cast<size_t>(kNumBodyParts),
+                                          std::vector<double>(static_cast<size_t>(V)));
+  std::vector<BodyPart> parts(static_cast<size_t>(V), BodyPart::TorsoFront);
   for (int i = 0; i < V; ++i) {
     const Vec3& p = v[static_cast<size_t>(i)];
     const double y = p.y() - yc(p.z()), x = p.x() - xc;
@@ -226,9 +237,10 @@ void label_smpl_body(BodyModel& m) {
     for (int s = 0; s < 2; ++s) {
       const Arm& a = arms[static_cast<size_t>(s)];
       const Vec3 d = p - a.shoulder;
-      arm_f[static_cast<size_t>(s)] = cap(std::min(d.dot(a.bone) - 0.14 * d.dot(a.above) + 0.0093 * a.upper_len,
-                                                   d.dot(a.above) + 0.571 * a.upper_len),
-                                          w_arm[static_cast<size_t>(s)], i);
+      arm_f[static_cast<size_t>(s)] =
+          cap(std::min(d.dot(a.bone) - 0.14 * d.dot(a.above) + 0.0093 * a.upper_len,
+                       d.dot(a.above) + 0.571 * a.upper_len),
+              w_arm[static_cast<size_t>(s)], i);
       const double past_wrist = (p - a.wrist).dot(a.forearm) - 0.0333 * a.fore_len;
       const BodyPart hand = s == 0 ? BodyPart::LeftHand : BodyPart::RightHand;
       const BodyPart sleeve = s == 0 ? BodyPart::LeftSleeve : BodyPart::RightSleeve;
@@ -248,21 +260,20 @@ void label_smpl_body(BodyModel& m) {
     at(BodyPart::TorsoBack) = std::min(torso, y);
     int best = 0;
     for (int q = 0; q < kNumBodyParts; ++q) {
-      m.part_fields[static_cast<size_t>(q)][static_cast<size_t>(i)] = g[static_cast<size_t>(q)];
+      fields[static_cast<size_t>(q)][static_cast<size_t>(i)] = g[static_cast<size_t>(q)];
       if (g[static_cast<size_t>(q)] > g[static_cast<size_t>(best)]) best = q;
     }
-    m.vertex_parts[static_cast<size_t>(i)] = static_cast<BodyPart>(best);
+    parts[static_cast<size_t>(i)] = static_cast<BodyPart>(best);
   }
   std::array<int, kNumBodyParts> count{};
-  for (BodyPart b : m.vertex_parts) ++count[static_cast<size_t>(b)];
+  for (BodyPart b : parts) ++count[static_cast<size_t>(b)];
   for (int q = 0; q < kNumBodyParts; ++q) {
     if (count[static_cast<size_t>(q)] == 0) {
       const std::string part = body_part_name(static_cast<BodyPart>(q));
-      m.vertex_parts.clear();
-      m.part_fields.clear();
-      throw InvalidInput(fmt::format("body model '{}' cannot be given part labels: no vertex falls in the part '{}' "
-                                     "(the template does not have the proportions of a human body in a T-pose)",
-                                     m.name, part));
+      throw InvalidInput(
+          fmt::format("body model '{}' cannot be given part labels: no vertex falls in the part '{}' "
+                      "(the template does not have the proportions of a human body in a T-pose)",
+                      m.name, part));
     }
   }
 
@@ -280,7 +291,8 @@ void label_smpl_body(BodyModel& m) {
       return out >= -2.0 * widen && out <= 18.0 * widen;
     });
   }
-  const double top = std::max_element(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return a.z() < b.z(); })->z();
+  const double top =
+      std::max_element(v.begin(), v.end(), [](const Vec3& a, const Vec3& b) { return a.z() < b.z(); })->z();
   auto front = [&](double z, double dist) { return Vec3(xc, yc(z) + dist, z); };
   lm["left_elbow"] = closest_vertex(v, jt(kLElbow) + Vec3(0, 0, 90));
   lm["left_wrist"] = closest_vertex(v, jt(kLWrist) + Vec3(0, 0, 90));
@@ -294,12 +306,11 @@ void label_smpl_body(BodyModel& m) {
   lm["left_thigh"] = closest_vertex(v, jt(kLHip) + 0.3 * (jt(kLKnee) - jt(kLHip)) + Vec3(250, 0, 0));
   lm["left_calf"] = closest_vertex(v, jt(kLKnee) + 0.3 * (jt(kLAnkle) - jt(kLKnee)) + Vec3(250, 0, 0));
   for (const auto& [name, i] : lm) {
-    if (i < 0) {
-      m.vertex_parts.clear();
-      m.part_fields.clear();
+    if (i < 0)
       throw InvalidInput(fmt::format("body model '{}': no vertex for the landmark '{}'", m.name, name));
-    }
   }
+  m.vertex_parts = std::move(parts);
+  m.part_fields = std::move(fields);
   m.landmarks = std::move(lm);
   m.labels_note.clear();
 }

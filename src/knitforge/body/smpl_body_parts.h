@@ -19,19 +19,20 @@
 ///    spine joints (pelvis, spine1..3: their y, interpolated linearly in
 ///    height), the median plane x = pelvis x;
 ///  - part fields, each a signed distance (mm) to a plane, or the minimum of
-///    several, placed relative to the joints (offsets are fractions of the
-///    bone lengths, so the cuts follow the body's proportions):
-///    head above a plane 22 mm below the head joint (tilted back), neck between
-///    that plane and one just below the neck joint, within 1.75 times the
-///    neck's half-width (at the neck landmark's height) of the median plane; each arm beyond a plane
-///    through the shoulder across the upper arm (tilted 8° so the armpit
-///    side reaches in further) and above a plane along the upper arm 0.57
-///    upper-arm lengths below the shoulder (cutting off the torso's side), its hand beyond a plane across the forearm just past the
-///    wrist, its sleeve the rest; each leg below a plane through the crotch
-///    height (0.24 thigh lengths below the hips) rising outwards with slope
-///    0.55, on its side of the median plane, its foot below 0.10 shin
-///    lengths above the ankle; the torso is the rest, front and back by the
-///    coronal plane;
+///    several, placed relative to the joints (offsets mostly fractions of
+///    the bone lengths, so the cuts follow the body's proportions):
+///    head above a plane 22 mm below the head joint (tilted back); neck
+///    between that plane and one just below the neck joint, within 1.75
+///    times the neck's half-width (at the neck landmark's height) of the
+///    median plane; each arm beyond a plane through the shoulder across
+///    the upper arm (tilted 8° so the armpit side reaches in further) and
+///    above a plane along the upper arm 0.57 upper-arm lengths below the
+///    shoulder (cutting off the torso's side); its hand beyond a plane
+///    across the forearm just past the wrist, its sleeve the rest; each leg
+///    below a plane through the crotch height (0.24 thigh lengths below the
+///    hips) rising outwards with slope 0.55, on its side of the median
+///    plane, its foot below 0.10 shin lengths above the ankle; the torso is
+///    the rest, front and back by the coronal plane;
 ///  - skinning weights keep the limbs apart: a limb's (arm, hand, leg, foot)
 ///    and the head's field is capped by 1000 mm x (w - 0.02), w the vertex's
 ///    total weight on the joints of that limb's chain (e.g. collar, shoulder,
@@ -40,7 +41,8 @@
 ///  - each vertex's label is the part of the largest field;
 ///  - landmarks (body_measurements.h): the crotch is the lowest vertex
 ///    near the median plane above the knees; an acromion the highest
-///    vertex 2 mm inside to 18 mm outside its shoulder joint; the elbow,
+///    vertex 2 mm inside to 18 mm outside its shoulder joint (these bands
+///    widened, doubling, when a coarse mesh has no vertex in them); the elbow,
 ///    wrist and upper-arm landmarks the vertices nearest points above those
 ///    joints (and above mid upper arm); the chest, waist, hip, neck and head
 ///    landmarks the vertices nearest points far in front of (behind, for the
@@ -68,7 +70,8 @@ std::string smpl_body_parts_missing(const BodyModel& model);
 /// Fills model.vertex_parts, part_fields and landmarks (see the file
 /// comment) and clears model.labels_note.
 /// \throw InvalidInput naming the model and what is missing
-///        (smpl_body_parts_missing()), or a part left without vertices.
+///        (smpl_body_parts_missing()), or a part or landmark left without
+///        vertices; the model is then unchanged.
 void label_smpl_body(BodyModel& model);
 
 }  // namespace knitforge
