@@ -395,8 +395,8 @@ int run_region(const RegionOptions& o) {
       throw InvalidInput(fmt::format("{}: {} vertices, {} faces: not a body of {} ({} vertices; as written by body "
                                      "make/fit{}); for a scan give the directory of its fit",
                                      o.input, surface.num_vertices(), surface.num_faces(),
-                                     own && !o.model.empty() ? "the model " + o.model
-                                                             : fmt::format("the built-in model at edge {} mm", o.model_edge),
+                                     !o.model.empty() ? "the model " + o.model
+                                                      : fmt::format("the built-in model at edge {} mm", o.model_edge),
                                      model.num_vertices(), o.model.empty() ? "; for a model file's body give --model" : ""));
     field = body_part_field(model, part);
     source = o.input;
