@@ -182,9 +182,17 @@ void label_smpl_body(BodyModel& m) {
                     "mm) between the shoulders",
                     m.name, neck_level));
   const double neck_half_width = 1.75 * neck_radius;
-  const double hips_z = 0.5 * (jt(kLHip).z() + jt(kRHip).z());
-  const double thigh = 0.5 * (len(kLHip, kLKnee) + len(kRHip, kRKnee));
-  const double crotch_z = hips_z - 0.2386 * thigh;
+  // The legs' cut passes 10.4 mm above the crotch (the lowest vertex near
+  // the median plane above the knees) and rises outwards.
+  const double knees_z = std::max(jt(kLKnee).z(), jt(kRKnee).z());
+  const int crotch = extreme_z(v, -1.0, [&](const Vec3& p, double widen) {
+    return std::abs(p.x() - xc) < 12.0 * widen && p.z() > knees_z;
+  });
+  if (crotch < 0)
+    throw InvalidInput(fmt::format("body model '{}' cannot be given part labels: no crotch (no vertex near the median "
+                                   "plane above the knees)",
+                                   m.name));
+  const double crotch_z = v[static_cast<size_t>(crotch)].z() + 10.4;
 
   // Each arm: its bone directions and "above" = up made perpendicular to
   // the upper arm (up itself for a horizontal arm).
@@ -279,10 +287,7 @@ void label_smpl_body(BodyModel& m) {
 
   // Landmarks.
   std::map<std::string, int> lm;
-  const double knees_z = std::max(jt(kLKnee).z(), jt(kRKnee).z());
-  lm["crotch"] = extreme_z(v, -1.0, [&](const Vec3& p, double widen) {
-    return std::abs(p.x() - xc) < 12.0 * widen && p.z() > knees_z;
-  });
+  lm["crotch"] = crotch;
   for (int s = 0; s < 2; ++s) {
     const double sx = s == 0 ? 1.0 : -1.0;
     const double sh = sx * (arms[static_cast<size_t>(s)].shoulder.x() - xc);

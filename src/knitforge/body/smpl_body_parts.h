@@ -29,8 +29,8 @@
 ///    above a plane along the upper arm 0.57 upper-arm lengths below the
 ///    shoulder (cutting off the torso's side); its hand beyond a plane
 ///    across the forearm just past the wrist, its sleeve the rest; each leg
-///    below a plane through the crotch height (0.24 thigh lengths below the
-///    hips) rising outwards with slope 0.55, on its side of the median
+///    below a plane 10.4 mm above the crotch landmark (below) at the median
+///    plane, rising outwards with slope 0.55, on its side of the median
 ///    plane, its foot below 0.10 shin lengths above the ankle; the torso is
 ///    the rest, front and back by the coronal plane;
 ///  - skinning weights keep the limbs apart: a limb's (arm, hand, leg, foot)
