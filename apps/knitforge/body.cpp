@@ -2,7 +2,7 @@
 //   knitforge body make --height 176 --chest 96 ... [--pose a-pose|FILE.json] -o body.obj
 //   knitforge body make --model SMPL.npz [--shape b0,b1,...] [--pose ...] -o body.obj
 //   knitforge body fit SCAN [--keypoints K.json] [--model SMPL.npz] -o fitted/
-//   knitforge body region fitted/|BODY.obj --part torso-front -o panel.obj
+//   knitforge body region fitted/|BODY.obj --part torso-front [--model SMPL.npz] -o panel.obj
 //   knitforge body transfer GARMENT.obj --from A --to B -o out.obj
 //   knitforge body render-depth / calibrate / fuse: body_depth.cpp
 #include <algorithm>
@@ -98,12 +98,13 @@ nlohmann::json joints_json(const BodyModel& model, const PosedBody& posed) {
 }
 
 // body make --model: a body of a licensed SMPL-format model from its shape
-// parameters (the model has no landmarks, so no measurements).
+// parameters (not from measurements: its shape parameters are betas; the
+// body's measurements are reported when the model has landmarks).
 int run_make_from_file(const MakeOptions& o) {
   for (int k = 0; k < kNumMeasurements; ++k) {
     if (o.values[static_cast<size_t>(k)])
-      throw InvalidInput(fmt::format("body make: --{} cannot be used with --model: a model file has no measurements "
-                                     "(no landmarks); give its shape parameters with --shape b0,b1,...",
+      throw InvalidInput(fmt::format("body make: --{} cannot be used with --model: a model file's shape parameters "
+                                     "are not measurements; give them with --shape b0,b1,...",
                                      measurement_info(static_cast<Measurement>(k)).option));
   }
   if (o.edge != GeneratedBodyOptions{}.edge_length)
@@ -117,8 +118,12 @@ int run_make_from_file(const MakeOptions& o) {
   for (size_t k = 0; k < betas.size(); ++k) params.shape(static_cast<Eigen::Index>(k)) = betas[k];
   const PosedBody posed = pose_body(model, params);
   write_made_body(o, posed_mesh(model, posed));
-  nlohmann::json report = body_params_to_json(model, params);
+  const std::optional<BodyMeasurements> measured =
+      model.landmarks.empty() ? std::nullopt
+                              : std::optional<BodyMeasurements>(measure_body(model, shape_body(model, params.shape)));
+  nlohmann::json report = body_params_to_json(model, params, measured ? &*measured : nullptr);
   report["joints_mm"] = joints_json(model, posed);
+  if (!model.vertex_parts.empty()) report["vertex_parts"] = vertex_part_names(model);
   if (!o.params.empty()) write_report_json(o.params, report, false);
   if (o.json) std::fputs((body_params_to_json(model, params).dump(2) + "\n").c_str(), stdout);
   note(fmt::format("body: {} of {} vertices, {} joints, {} of {} shape parameters given, pose {}{} -> {}", o.model,
@@ -245,7 +250,7 @@ int run_fit(const FitOptions& o) {
   const BodyFitResult fit =
       o.objective == "best" ? fit_body_multistart(model, scan, init, fo) : fit_body(model, scan, init, fo);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // A model file has no landmarks, hence no measurements.
+  // A model file whose landmarks could not be derived has no measurements.
   const std::optional<BodyMeasurements> measured =
       model.landmarks.empty() ? std::nullopt
                               : std::optional<BodyMeasurements>(measure_body(model, shape_body(model, fit.params.shape)));
@@ -289,7 +294,7 @@ int run_fit(const FitOptions& o) {
       for (size_t i = 0; i < err.size(); ++i) os << i << ',' << fmt::format("{:.3f}", err[i]) << '\n';
     });
   }
-  // Garment regions on the scan need the model's part labels (a model file has none).
+  // Garment regions on the scan need the model's part labels.
   if (labelled) {
     const std::vector<BodyPart> parts = scan_vertex_parts(model, fit.posed, scan);
     write_file_atomically((dir / "scan_parts.csv").string(), [&](std::ostream& os) {
@@ -302,7 +307,7 @@ int run_fit(const FitOptions& o) {
                              (*measured)[static_cast<size_t>(Measurement::ChestGirth)] / 10.0,
                              (*measured)[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
                              (*measured)[static_cast<size_t>(Measurement::HipGirth)] / 10.0)
-               : fmt::format("model {} (no measurements, no garment regions)", model.name);
+               : fmt::format("model {} (no measurements, no garment regions: {})", model.name, model.labels_note);
   const std::string work = evolution ? fmt::format("{} evaluations of the evolution strategy", fit.evaluations)
                                      : fmt::format("{} iterations", fit.iterations);
   note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {}; {}; {:.1f} s -> {}/fitted.obj, "
@@ -319,6 +324,7 @@ struct RegionOptions {
   std::string scan;
   double edge = 0.0;
   double model_edge = 15.0;
+  std::string model;  // an SMPL-format .npz instead of the built-in model
   int remesh = BodyRegionOptions{}.remesh_iterations;
 };
 
@@ -334,7 +340,15 @@ int run_region(const RegionOptions& o) {
   if (o.output.empty()) throw InvalidInput("body region: give the output mesh with -o FILE (.obj, .ply, .off, .stl)");
   const BodyPart part = body_part_from_name(o.part);
   std::unique_ptr<BodyModel> own;
-  const BodyModel& model = model_with_edge(o.model_edge, own);
+  if (!o.model.empty()) {
+    if (o.model_edge != RegionOptions{}.model_edge)
+      throw InvalidInput("body region: --model-edge is the built-in model's mesh size; a model file (--model) has its "
+                         "own mesh");
+    own = std::make_unique<BodyModel>(load_smpl_model(o.model));
+    if (own->vertex_parts.empty())
+      throw InvalidInput(fmt::format("body region: the model {} has no garment regions: {}", o.model, own->labels_note));
+  }
+  const BodyModel& model = own ? *own : model_with_edge(o.model_edge, own);
   TriMesh surface;
   std::vector<double> field;
   std::string source;
@@ -350,9 +364,9 @@ int run_region(const RegionOptions& o) {
       throw InvalidInput(fmt::format("{}: not valid JSON ({})", params_path, e.what()));
     }
     if (params.contains("model") && params["model"].is_string() && params["model"].get<std::string>() != model.name)
-      throw InvalidInput(fmt::format("{}: the fit used the model '{}', which has no garment regions (part labels); "
-                                     "body region needs a fit with the built-in model (body fit without --model)",
-                                     params_path, params["model"].get<std::string>()));
+      throw InvalidInput(fmt::format("{}: the fit used the model '{}', not '{}'; give the model file the fit used "
+                                     "with --model FILE.npz (or none for the built-in model)",
+                                     params_path, params["model"].get<std::string>(), model.name));
     std::string scan_path = o.scan;
     if (scan_path.empty()) {
       if (!params.contains("fit") || !params["fit"].contains("scan") || !params["fit"]["scan"].is_string())
@@ -379,11 +393,12 @@ int run_region(const RegionOptions& o) {
   } else {
     surface = load_surface(o.input, "mm");
     if (surface.num_vertices() != model.num_vertices() || surface.faces != model.faces)
-      throw InvalidInput(fmt::format("{}: {} vertices, {} faces: not a body of the built-in model at edge {} mm ({} "
-                                     "vertices; as written by body make/fit; bodies of a model file have no garment "
-                                     "regions); for a scan give the directory of its fit",
-                                     o.input, surface.num_vertices(), surface.num_faces(), o.model_edge,
-                                     model.num_vertices()));
+      throw InvalidInput(fmt::format("{}: {} vertices, {} faces: not a body of {} ({} vertices; as written by body "
+                                     "make/fit{}); for a scan give the directory of its fit",
+                                     o.input, surface.num_vertices(), surface.num_faces(),
+                                     !o.model.empty() ? "the model " + o.model
+                                                      : fmt::format("the built-in model at edge {} mm", o.model_edge),
+                                     model.num_vertices(), o.model.empty() ? "; for a model file's body give --model" : ""));
     field = body_part_field(model, part);
     source = o.input;
   }
@@ -467,7 +482,7 @@ void add_body_command(CLI::App& app, Action& action) {
                    "Also write the parameters, the measurements, the joints and each vertex's part (JSON)");
   make->add_option("--model", o->model,
                    "A licensed SMPL-format model file (.npz: docs/bodies.md) instead of the built-in model; its "
-                   "shape is given by --shape, not by measurements");
+                   "shape is given by --shape, not by measurements (which --params reports)");
   make->add_option("--shape", o->shape,
                    "With --model: the shape parameters (betas) b0,b1,... (unitless; those not given are 0)");
   make->add_option("--edge", o->edge, "Edge length of the model's mesh (mm, 8-60; 15 is built once and cached)")
@@ -501,7 +516,8 @@ void add_body_command(CLI::App& app, Action& action) {
                   "JSON format: docs/formats.md) instead of --pose on the scan's bounding box");
   fit->add_option("--model", f->model,
                   "Fit a licensed SMPL-format model file (.npz: docs/bodies.md; its first 10 shape parameters) "
-                  "instead of the built-in model: no measurements, no scan_parts.csv (it has no garment regions)");
+                  "instead of the built-in model; its part labels and landmarks are derived from its joints, "
+                  "weights and shape (a model they cannot be derived for: no measurements, no scan_parts.csv)");
   fit->add_option("--iterations", f->iterations, "Most Gauss-Newton iterations (default 40)")->check(CLI::Range(1, 1000));
   fit->add_option("--optimizer", f->optimizer,
                   "gauss-newton (default) or evolution: the seed's gradient-free (1+1) evolution strategy on the "
@@ -533,6 +549,9 @@ void add_body_command(CLI::App& app, Action& action) {
       ->check(CLI::NonNegativeNumber);
   region->add_option("--remesh", r->remesh, "Isotropic remeshing iterations of the panel (default 3; 0: none)")
       ->check(CLI::Range(0, 50));
+  region->add_option("--model", r->model,
+                     "The licensed SMPL-format model file (.npz) the body or the fit was made with, instead of the "
+                     "built-in model");
   region->add_option("--model-edge", r->model_edge, "Edge length of the body model (mm) the body was made with (body make --edge; default 15)")
       ->check(CLI::Range(8.0, 60.0));
   region->callback([r, &action] { action = [r] { return run_region(*r); }; });

@@ -74,9 +74,9 @@ double hull_outside_distance(const std::vector<Vec2>& h, const Vec2& q) {
 int landmark(const BodyModel& model, const char* name) {
   const auto it = model.landmarks.find(name);
   if (it == model.landmarks.end())
-    throw InvalidInput(fmt::format("body model '{}' has no landmark '{}'; measurements need the landmarks of the "
-                                   "generated model (a loaded SMPL model has none)",
-                                   model.name, name));
+    throw InvalidInput(fmt::format("body model '{}' has no landmark '{}' (measurements need the landmarks of the "
+                                   "generated model or of an SMPL-format model){}",
+                                   model.name, name, model.labels_note.empty() ? "" : ": " + model.labels_note));
   return it->second;
 }
 

@@ -19,8 +19,9 @@
 ///    limbs (left side); of the section's loops, the one whose hull contains
 ///    the bone or torso axis.
 /// The landmarks are vertices of the model (BodyModel::landmarks), so a
-/// measurement follows the shape exactly; a model without them (a loaded
-/// SMPL file) cannot be measured.
+/// measurement follows the shape exactly: our generated body's, or those
+/// derived for a loaded SMPL-format model (smpl_body_parts.h); a model
+/// without them cannot be measured.
 
 #include <array>
 #include <optional>

@@ -62,7 +62,8 @@ std::vector<double> body_part_field(const BodyModel& model, BodyPart part) {
   const auto p = static_cast<size_t>(part);
   if (!model.part_fields.empty()) return model.part_fields[p];
   if (model.vertex_parts.empty())
-    throw InvalidInput(fmt::format("body model '{}' has no part labels to cut a region by", model.name));
+    throw InvalidInput(fmt::format("body model '{}' has no part labels to cut a region by{}", model.name,
+                                   model.labels_note.empty() ? "" : ": " + model.labels_note));
   const TriMesh mesh = model.template_mesh();
   std::vector<double> f(static_cast<size_t>(model.num_vertices()));
   for (size_t i = 0; i < f.size(); ++i) f[i] = model.vertex_parts[i] == part ? 1.0 : -1.0;

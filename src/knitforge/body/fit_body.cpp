@@ -376,7 +376,8 @@ BodyParams place_on_scan(const BodyModel& model, const BodyParams& params, const
 
 std::vector<BodyPart> scan_vertex_parts(const BodyModel& model, const PosedBody& posed, const TriMesh& scan) {
   if (model.vertex_parts.empty())
-    throw InvalidInput(fmt::format("body model '{}' has no part labels to carry onto the scan", model.name));
+    throw InvalidInput(fmt::format("body model '{}' has no part labels to carry onto the scan{}", model.name,
+                                   model.labels_note.empty() ? "" : ": " + model.labels_note));
   if (static_cast<int>(posed.vertices.size()) != model.num_vertices())
     throw InvalidInput("scan_vertex_parts: the posed body does not belong to this model");
   const SurfaceBvh bvh(posed_mesh(model, posed));

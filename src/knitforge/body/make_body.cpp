@@ -19,7 +19,8 @@ MadeBody make_body(const BodyModel& model, const MeasurementTargets& targets, co
 
 std::vector<std::string> vertex_part_names(const BodyModel& model) {
   if (model.vertex_parts.empty())
-    throw InvalidInput(fmt::format("body model '{}' has no part labels", model.name));
+    throw InvalidInput(fmt::format("body model '{}' has no part labels{}", model.name,
+                                   model.labels_note.empty() ? "" : ": " + model.labels_note));
   std::vector<std::string> names;
   names.reserve(model.vertex_parts.size());
   for (BodyPart p : model.vertex_parts) names.push_back(body_part_name(p));

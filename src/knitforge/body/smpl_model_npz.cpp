@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/body/smpl_body_parts.h"
 #include "knitforge/io/read_npz.h"
 #include "knitforge/util/errors.h"
 
@@ -13,6 +14,7 @@ namespace knitforge {
 namespace {
 
 constexpr double kMetresToMm = 1000.0;
+constexpr size_t kSmplBodyJoints = 22;  // pelvis .. right_wrist
 
 // Reads one array and checks its number of dimensions, with the entry named
 // in every message.
@@ -153,6 +155,9 @@ BodyModel load_smpl_model(const std::string& path, const SmplLoadOptions& option
     m.joint_names = smpl_joint_names();
   } else {
     for (int64_t j = 0; j < J; ++j) m.joint_names.push_back(fmt::format("joint_{}", j));
+    // SMPL+H (52) and SMPL-X (55) begin with SMPL's 22 body joints.
+    if (J == 52 || J == 55)
+      for (size_t j = 0; j < kSmplBodyJoints; ++j) m.joint_names[j] = smpl_joint_names()[j];
   }
 
   const NpyArray sd = file.array("shapedirs", 3, "V x 3 x K shape directions");
@@ -219,6 +224,21 @@ BodyModel load_smpl_model(const std::string& path, const SmplLoadOptions& option
   m.skinning_weights = sparse_rows(w, V, J, w_sums);  // rows rescaled to sum to 1 exactly
 
   validate_body_model(m);
+  if (options.derive_labels) {
+    // Part labels, fields and landmarks from the model's own data; a model
+    // they cannot be derived for loads without them and says why.
+    try {
+      label_smpl_body(m);
+    } catch (const InvalidInput& e) {
+      m.vertex_parts.clear();
+      m.part_fields.clear();
+      m.landmarks.clear();
+      m.labels_note = e.what();
+    }
+  } else {
+    m.labels_note = fmt::format("body model '{}' was loaded without part labels (SmplLoadOptions::derive_labels)", m.name);
+  }
+  if (!m.vertex_parts.empty()) validate_body_model(m);
   return m;
 }
 

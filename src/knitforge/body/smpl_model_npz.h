@@ -30,10 +30,21 @@
 /// as w_ours = C w_smpl.
 ///
 /// Joint names: SMPL's 24 ("pelvis", "left_hip", ..., "right_hand") when J
-/// = 24, so the named poses (body_pose.h) apply; "joint_0".. otherwise
-/// (SMPL+H, SMPL-X). Shape names "beta0".. (unitless). The model has no
-/// part labels and no landmarks: measurements (body_measurements.h),
-/// garment regions (cut_body_region.h) and scan_vertex_parts() refuse it.
+/// = 24, so the named poses (body_pose.h) apply; for J = 52 (SMPL+H) and 55
+/// (SMPL-X), whose first 22 joints are SMPL's body joints in SMPL's order
+/// (the hands' and face's joints follow), SMPL's names for those 22 and
+/// "joint_22".. for the rest; "joint_0".. for any other J. Shape names
+/// "beta0".. (unitless).
+///
+/// Part labels, smooth part fields and the measurement landmarks are then
+/// derived from the model's own weights, joints and geometry
+/// (label_smpl_body(), smpl_body_parts.h), so measurements
+/// (body_measurements.h), garment regions (cut_body_region.h),
+/// scan_vertex_parts() and the fitter's zero weight on head, hands and feet
+/// work on it. A model they cannot be derived for (other joints, a
+/// template that is not an upright T-pose) still loads, without labels and
+/// landmarks, with the reason in BodyModel::labels_note; what needs them
+/// then refuses it with that reason.
 
 #include <string>
 
@@ -49,6 +60,8 @@ struct SmplLoadOptions {
   /// Skinning weight rows may differ from 1 by this much (float32 files);
   /// they are then rescaled to sum to 1 exactly. Larger: refused.
   double weight_sum_tolerance = 1e-4;
+  /// Derive part labels, part fields and landmarks (label_smpl_body()).
+  bool derive_labels = true;
 };
 
 /// Reads `path` (an .npz file) into a BodyModel named after the file name,
