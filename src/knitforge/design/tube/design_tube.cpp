@@ -125,6 +125,19 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
         if (rim_d.empty()) rim_d = rim_distance(surface0, sw);
         co.rim_distance = rim_d;
         if (init) co.crown_vertex = crown_vertex_of(surface0, *init);
+        // The same crown point as an earlier candidate: the same field.
+        const Built* same = nullptr;
+        for (const auto& e : built)
+          if (e && co.crown_vertex && e->crown.crown_vertex == *co.crown_vertex) same = &*e;
+        if (same) {
+          c.estimate = divergence_metric(same->crown.annulus, same->field.value, dv).transfer_estimate(sw);
+          c.knittable = true;
+          if (!init) c.initial_estimate = c.estimate;
+          Built copy = *same;
+          d.candidates.push_back(c);
+          built.push_back(std::move(copy));
+          continue;
+        }
         TubeCrown crown = cut_crown(surface0, co, options.surface_name);
         TubeField f = tube_field(crown.annulus, options.surface_name);
         round_levels(crown.annulus, f, options.params.stitch_height);
