@@ -33,13 +33,14 @@ void add_tube_flags(CLI::App& cmd, TubeFlags& f) {
                  "With --tube on a surface with one boundary loop: stitches of the last round, joined in pairs "
                  "across the beds to close the crown (8..64)")
       ->check(CLI::Range(8, 64));
-  cmd.add_option("--tube-field", f.tube_field,
-                 "With --tube: the governing field whose isocurves are the rounds (seed 3.3.8; docs/tubes.md "
-                 "\"Choosing the field\"): auto (default: the knittable candidate with the lowest divergence "
-                 "estimate of increases + decreases; harmonic unless another scores at least one stitch lower), "
-                 "harmonic (0 on one rim, 1 on the other rim or the crown segment), fiedler (the Fiedler vector of "
-                 "the cotangent Laplacian) or orthogonal (the field orthogonal to it); a forced field that cannot be "
-                 "knitted in rounds is refused, saying why");
+  cmd.add_option(
+      "--tube-field", f.tube_field,
+      "With --tube: the governing field whose isocurves are the rounds (seed 3.3.8; docs/tubes.md "
+      "\"Choosing the field\"): auto (default: the knittable candidate with the lowest divergence "
+      "estimate of increases + decreases; harmonic unless another scores at least one stitch lower), "
+      "harmonic (0 on one rim, 1 on the other rim or the crown segment), fiedler (the Fiedler vector of "
+      "the cotangent Laplacian) or orthogonal (the field orthogonal to it); a forced field that cannot be "
+      "knitted in rounds is refused, saying why");
   cmd.add_flag("--no-tube-short-rows", f.no_tube_short_rows,
                "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
                "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
@@ -141,29 +142,33 @@ int run_tube_design(const TubeCommandOptions& o) {
     nlohmann::json j = {{"name", tube_field_name(c.kind)},
                         {"initial_shaping_stitches_estimate", c.initial_estimate},
                         {"knittable", c.knittable}};
-    if (c.knittable) j["shaping_stitches_estimate"] = c.estimate;
-    else j["why_not"] = c.why_not;
+    if (c.knittable) {
+      j["shaping_stitches_estimate"] = c.estimate;
+    } else {
+      j["why_not"] = c.why_not;
+    }
     candidates.push_back(j);
   }
-  report["field"] = {{"kind", d.field_kind == TubeFieldKind::Harmonic
-                                  ? "harmonic, 0 on the start rim, 1 on the end rim (or crown segment)"
-                                  : std::string(tube_field_name(d.field_kind)) + ", 0 on the start rim, 1 on the end rim"},
-                     {"chosen", tube_field_name(d.field_kind)},
-                     {"asked", tube_field_name(o.field)},
-                     {"candidates", candidates},
-                     {"fiedler_eigenvalue_per_mm2", d.initial.fiedler_eigenvalue},
-                     {"orthogonal_gradient_alignment", d.initial.orthogonal_alignment},
-                     {"start_rim_mm", d.field.start_length},
-                     {"end_rim_mm", d.field.end_length},
-                     {"interior_extrema", d.field.interior_extrema},
-                     {"mean_rim_to_rim_mm", d.levels.mean_length},
-                     {"divergence",
-                      {{"of", "the normalised gradient (seed 3.3.8), on the surface the field lives on"},
-                       {"metric_mm", d.divergence.total},
-                       {"per_area_per_mm", d.divergence.normalised()},
-                       {"shaping_stitches_estimate", d.divergence.transfer_estimate(params.stitch_width)},
-                       {"shaping_stitches_designed", d.increases + d.decreases},
-                       {"flat_faces", d.divergence.flat_faces}}}};
+  report["field"] = {
+      {"kind", d.field_kind == TubeFieldKind::Harmonic
+                   ? "harmonic, 0 on the start rim, 1 on the end rim (or crown segment)"
+                   : std::string(tube_field_name(d.field_kind)) + ", 0 on the start rim, 1 on the end rim"},
+      {"chosen", tube_field_name(d.field_kind)},
+      {"asked", tube_field_name(o.field)},
+      {"candidates", candidates},
+      {"fiedler_eigenvalue_per_mm2", d.initial.fiedler_eigenvalue},
+      {"orthogonal_gradient_alignment", d.initial.orthogonal_alignment},
+      {"start_rim_mm", d.field.start_length},
+      {"end_rim_mm", d.field.end_length},
+      {"interior_extrema", d.field.interior_extrema},
+      {"mean_rim_to_rim_mm", d.levels.mean_length},
+      {"divergence",
+       {{"of", "the normalised gradient (seed 3.3.8), on the surface the field lives on"},
+        {"metric_mm", d.divergence.total},
+        {"per_area_per_mm", d.divergence.normalised()},
+        {"shaping_stitches_estimate", d.divergence.transfer_estimate(params.stitch_width)},
+        {"shaping_stitches_designed", d.increases + d.decreases},
+        {"flat_faces", d.divergence.flat_faces}}}};
   report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
                       {"quads", types[static_cast<int>(StitchType::Knit)]},
                       {"increases", d.increases},
@@ -242,17 +247,20 @@ int run_tube_design(const TubeCommandOptions& o) {
   {
     std::string line;
     for (const TubeFieldCandidate& c : d.candidates)
-      line += c.knittable ? fmt::format("{}{} {:.0f}", line.empty() ? "" : ", ", tube_field_name(c.kind), c.estimate)
-                          : fmt::format("{}{} not knittable", line.empty() ? "" : ", ", tube_field_name(c.kind));
+      line += c.knittable
+                  ? fmt::format("{}{} {:.0f}", line.empty() ? "" : ", ", tube_field_name(c.kind), c.estimate)
+                  : fmt::format("{}{} not knittable", line.empty() ? "" : ", ", tube_field_name(c.kind));
     note(fmt::format("tube: field {} ({}); candidates' shaping estimates: {}", tube_field_name(d.field_kind),
-                     o.field == TubeFieldKind::Auto ? "the lowest knittable" : "forced by --tube-field", line));
+                     o.field == TubeFieldKind::Auto ? "the lowest knittable" : "forced by --tube-field",
+                     line));
   }
   if (closed_end)
-    note(fmt::format("tube: closed at the crown: last round {} stitches ({} asked; {} pairs joined across the beds "
-                     "and bound off) along a {:.1f} mm crown segment at {:.0f} degrees (ring {:.1f} mm, slit "
-                     "{:.1f} mm wide, {:.0f} mm^2), crown {:.1f} mm from the rim",
-                     d.round_stitches.back(), o.crown_stitches, pairs, d.crown_segment, d.crown_direction, d.crown_ring,
-                     2.0 * d.crown_radius, d.crown_area, d.rim_to_crown));
+    note(fmt::format(
+        "tube: closed at the crown: last round {} stitches ({} asked; {} pairs joined across the beds "
+        "and bound off) along a {:.1f} mm crown segment at {:.0f} degrees (ring {:.1f} mm, slit "
+        "{:.1f} mm wide, {:.0f} mm^2), crown {:.1f} mm from the rim",
+        d.round_stitches.back(), o.crown_stitches, pairs, d.crown_segment, d.crown_direction, d.crown_ring,
+        2.0 * d.crown_radius, d.crown_area, d.rim_to_crown));
   for (const std::string& line : shape_notes) note(line);
   if (!knittable) {
     const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;

@@ -140,8 +140,8 @@ TEST_F(Cli, ShortrowTubeKnitsScannedLegAndHeadClosedOnKniterate) {
     ASSERT_EQ(r.code, 0) << r.err;
     const std::string out = path(part);
     // the leg with a 16-stitch crown: its closing pairs lie beyond the racking
-    r = run("shortrow " + path(part + ".obj") + " --tube --stitch 7x5.6 --machine kniterate --no-report -o " + out +
-            (part == "left-leg" ? " --crown-stitches 16" : ""));
+    r = run("shortrow " + path(part + ".obj") + " --tube --stitch 7x5.6 --machine kniterate --no-report -o " +
+            out + (part == "left-leg" ? " --crown-stitches 16" : ""));
     ASSERT_EQ(r.code, 0) << part << ": " << r.err;
     EXPECT_NE(r.err.find("kniterate: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("closed at the crown"), std::string::npos) << r.err;
@@ -202,11 +202,13 @@ TEST_F(Cli, ShortrowTubeFieldIsChosenOrForcedAndBadValuesAreRefused) {
   ASSERT_EQ(report["field"]["candidates"].size(), 3u);
   EXPECT_FALSE(report["field"]["candidates"][1]["knittable"].get<bool>());
   expect_knitted_as_designed(out + "/knitting_map.csv", path("tube_orth.k"), "kniterate");
-  r = run("shortrow tube --tube --stitch 7x5.6 --edge 6 --no-report --no-predict --no-knitout -o " + path("tube_auto"));
+  r = run("shortrow tube --tube --stitch 7x5.6 --edge 6 --no-report --no-predict --no-knitout -o " +
+          path("tube_auto"));
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("tube: field harmonic (the lowest knittable); candidates' shaping estimates: harmonic 0, "
-                       "fiedler not knittable, orthogonal "),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("tube: field harmonic (the lowest knittable); candidates' shaping estimates: harmonic 0, "
+                 "fiedler not knittable, orthogonal "),
+      std::string::npos)
       << r.err;
 
   r = run("shortrow tube --tube --tube-field fiedler --no-predict -o " + path("tube_fiedler"));

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "knitforge/geometry/cotan_laplacian.h"
 #include "knitforge/geometry/isocurves.h"
@@ -45,13 +45,16 @@ LaplacianEigenvectors laplacian_eigenvectors(const TriMesh& mesh, const Eigenvec
 SparseMatrix directional_stiffness(const TriMesh& mesh, const std::vector<Vec3>& d, double epsilon) {
   const int n = mesh.num_vertices();
   if (d.size() != mesh.faces.size())
-    throw InvalidInput(fmt::format("directional stiffness: {} directions for {} faces", d.size(), mesh.faces.size()));
-  if (!(epsilon >= 0.0)) throw InvalidInput(fmt::format("directional stiffness: epsilon must be >= 0, got {}", epsilon));
+    throw InvalidInput(
+        fmt::format("directional stiffness: {} directions for {} faces", d.size(), mesh.faces.size()));
+  if (!(epsilon >= 0.0))
+    throw InvalidInput(fmt::format("directional stiffness: epsilon must be >= 0, got {}", epsilon));
   std::vector<Eigen::Triplet<double>> trip;
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& t = mesh.faces[f];
     for (int k = 0; k < 3; ++k)
-      if (t[k] < 0 || t[k] >= n) throw InvalidInput(fmt::format("directional stiffness: face {} has vertex {} out of range", f, t[k]));
+      if (t[k] < 0 || t[k] >= n)
+        throw InvalidInput(fmt::format("directional stiffness: face {} has vertex {} out of range", f, t[k]));
     if (d[f].squaredNorm() == 0.0) continue;
     const Vec3 p[3] = {mesh.vertices[static_cast<size_t>(t[0])], mesh.vertices[static_cast<size_t>(t[1])],
                        mesh.vertices[static_cast<size_t>(t[2])]};
@@ -71,21 +74,26 @@ SparseMatrix directional_stiffness(const TriMesh& mesh, const std::vector<Vec3>&
   return B;
 }
 
-LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMatrix& L, const EigenvectorOptions& o) {
-  if (o.count < 1) throw InvalidInput(fmt::format("Laplacian eigenvectors: count must be >= 1, got {}", o.count));
+LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMatrix& L,
+                                             const EigenvectorOptions& o) {
+  if (o.count < 1)
+    throw InvalidInput(fmt::format("Laplacian eigenvectors: count must be >= 1, got {}", o.count));
   const int n = mesh.num_vertices();
   const int p = o.count + 4;
   if (mesh.faces.empty() || n < p + 1)
-    throw InvalidInput(fmt::format("Laplacian eigenvectors: the mesh has {} vertices and {} faces; {} eigenvectors "
-                                   "need at least {} vertices",
-                                   n, mesh.faces.size(), o.count, p + 1));
+    throw InvalidInput(
+        fmt::format("Laplacian eigenvectors: the mesh has {} vertices and {} faces; {} eigenvectors "
+                    "need at least {} vertices",
+                    n, mesh.faces.size(), o.count, p + 1));
   const SurfaceReport rep = validate_surface(mesh);
   if (rep.num_components != 1)
-    throw InvalidInput(fmt::format("Laplacian eigenvectors: the mesh has {} connected pieces; the Fiedler vector is "
-                                   "defined on one piece (split it and take each piece on its own)",
-                                   rep.num_components));
+    throw InvalidInput(
+        fmt::format("Laplacian eigenvectors: the mesh has {} connected pieces; the Fiedler vector is "
+                    "defined on one piece (split it and take each piece on its own)",
+                    rep.num_components));
   if (L.rows() != n || L.cols() != n)
-    throw InvalidInput(fmt::format("Laplacian eigenvectors: a {} x {} stiffness for {} vertices", L.rows(), L.cols(), n));
+    throw InvalidInput(
+        fmt::format("Laplacian eigenvectors: a {} x {} stiffness for {} vertices", L.rows(), L.cols(), n));
   const std::vector<double> area = mixed_voronoi_areas(mesh);
   Eigen::VectorXd m(n);
   for (int v = 0; v < n; ++v) m[v] = area[static_cast<size_t>(v)];
@@ -107,9 +115,10 @@ LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMa
   Eigen::MatrixXd X(n, std::max(p, 9));
   for (int v = 0; v < n; ++v) {
     const Vec3 x = mesh.vertices[static_cast<size_t>(v)] - c;
-    const double r[9] = {x.x(), x.y(), x.z(), x.x() * x.x(), x.y() * x.y(), x.z() * x.z(),
-                         x.x() * x.y(), x.y() * x.z(), x.z() * x.x()};
-    for (int j = 0; j < X.cols(); ++j) X(v, j) = j < 9 ? r[j] : std::pow(x.x(), 3) * (j - 8) + std::pow(x.y(), 3);
+    const double r[9] = {x.x(),         x.y(),         x.z(),         x.x() * x.x(), x.y() * x.y(),
+                         x.z() * x.z(), x.x() * x.y(), x.y() * x.z(), x.z() * x.x()};
+    for (int j = 0; j < X.cols(); ++j)
+      X(v, j) = j < 9 ? r[j] : std::pow(x.x(), 3) * (j - 8) + std::pow(x.y(), 3);
   }
   X = m_orthonormalise(X, m).leftCols(std::min<Eigen::Index>(p, X.cols()));
 
@@ -156,8 +165,8 @@ std::vector<double> fiedler_vector(const TriMesh& mesh) {
 double gradient_alignment(const TriMesh& mesh, const std::vector<double>& a, const std::vector<double>& b) {
   const size_t n = static_cast<size_t>(mesh.num_vertices());
   if (a.size() != n || b.size() != n)
-    throw InvalidInput(fmt::format("gradient alignment: fields of {} and {} values on a mesh of {} vertices", a.size(),
-                                   b.size(), n));
+    throw InvalidInput(fmt::format("gradient alignment: fields of {} and {} values on a mesh of {} vertices",
+                                   a.size(), b.size(), n));
   const std::vector<Vec3> ga = field_face_gradients(mesh, a), gb = field_face_gradients(mesh, b);
   const std::vector<double> fa = face_areas(mesh);
   double sum = 0.0, w = 0.0;

@@ -161,11 +161,19 @@ TEST(CrownSegment, TheClosingRoundHasTheAskedCount) {
       EXPECT_TRUE(d.map_check.ok()) << d.map_check.text();
       EXPECT_TRUE(d.mesh_check.ok()) << d.mesh_check.text();
       const int last = d.map.rows - 1;
-      EXPECT_NEAR(row_stitches(d.map, last, 0, d.map.cols), asked, 1) << (is_sock ? "sock " : "beanie ") << asked;
+      EXPECT_NEAR(row_stitches(d.map, last, 0, d.map.cols), asked, 1)
+          << (is_sock ? "sock " : "beanie ") << asked;
       EXPECT_NEAR(d.round_stitches.back(), asked, 1);
       EXPECT_EQ(static_cast<int>(closing_pairs(d.map).size()) * 2, row_stitches(d.map, last, 0, d.map.cols));
     }
   }
+  // A long segment on the sock's toe (32 stitches of 3.5 mm: s = 48 mm on a
+  // 38 mm toe), whose tangent ends the projection pulls in by 10 %.
+  TubeDesignOptions o;
+  o.crown_stitches = 32;
+  const TubeDesign d = design_tube(sock(SockShape{}, 4.0), o);
+  EXPECT_NEAR(d.round_stitches.back(), 32, 1);
+  EXPECT_NEAR(d.crown_ring, 32 * 3.5, 0.05 * 32 * 3.5);
 }
 
 // The sock's toe is closed side to side, as socks are grafted: the last
@@ -185,7 +193,8 @@ TEST(CrownSegment, TheSocksToeSeamRunsSideToSide) {
   for (const Stitch& s : d.stitch_mesh.stitches) {
     if (s.course != last) continue;
     Vec3 c = Vec3::Zero();
-    for (int q = 0; q < s.corners(); ++q) c += d.stitch_mesh.vertices[static_cast<size_t>(s.v[static_cast<size_t>(q)])];
+    for (int q = 0; q < s.corners(); ++q)
+      c += d.stitch_mesh.vertices[static_cast<size_t>(s.v[static_cast<size_t>(q)])];
     c /= s.corners();
     const int side = s.wale < h ? 0 : 1;
     mean[side] += c;

@@ -44,7 +44,8 @@ TEST(TubeFieldCandidates, TheOrthogonalFieldsIsocurvesOnASurfaceOfRevolutionAreM
   Eigen::MatrixXd A(n, 3);
   Eigen::VectorXd y(n);
   for (int v = 0; v < n; ++v) {
-    const double th = std::atan2(m.vertices[static_cast<size_t>(v)].y(), m.vertices[static_cast<size_t>(v)].x());
+    const double th =
+        std::atan2(m.vertices[static_cast<size_t>(v)].y(), m.vertices[static_cast<size_t>(v)].x());
     A(v, 0) = std::cos(th), A(v, 1) = std::sin(th), A(v, 2) = 1.0;
     y[v] = f.orthogonal[static_cast<size_t>(v)];
   }
@@ -58,14 +59,16 @@ TEST(TubeFieldCandidates, TheOrthogonalFieldsIsocurvesOnASurfaceOfRevolutionAreM
 }
 
 TEST(TubeFieldCandidates, NamesParseAndBadNamesAreRefusedWithTheList) {
-  for (TubeFieldKind k : {TubeFieldKind::Auto, TubeFieldKind::Harmonic, TubeFieldKind::Fiedler, TubeFieldKind::Orthogonal})
+  for (TubeFieldKind k :
+       {TubeFieldKind::Auto, TubeFieldKind::Harmonic, TubeFieldKind::Fiedler, TubeFieldKind::Orthogonal})
     EXPECT_EQ(parse_tube_field(tube_field_name(k)), k);
   try {
     parse_tube_field("geodesic");
     FAIL() << "accepted";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("auto (the lowest-scoring knittable one), harmonic, fiedler, orthogonal"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("auto (the lowest-scoring knittable one), harmonic, fiedler, orthogonal"),
+        std::string::npos)
         << e.what();
   }
 }
@@ -98,7 +101,8 @@ TEST(TubeFieldCandidates, TheRouteScoresEveryCandidateAndKnitsTheChosenOne) {
     design_tube(m, o);
     FAIL() << "the orthogonal field was knitted";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("the orthogonal field cannot be knitted in rounds"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("the orthogonal field cannot be knitted in rounds"),
+              std::string::npos)
         << e.what();
   }
   o.field = TubeFieldKind::Auto;

@@ -50,11 +50,13 @@ TubeField levelled_field(const TriMesh& mesh, const std::vector<double>& f, cons
     throw InvalidInput("its two rims lie on the same level (it runs round the tube, not along it)");
   double spread = 0.0;
   for (const auto* loop : {&harmonic.start_loop, &harmonic.end_loop})
-    for (int v : *loop) spread = std::max(spread, std::abs(f[static_cast<size_t>(v)] - (loop == &harmonic.start_loop ? a : b)));
+    for (int v : *loop)
+      spread = std::max(spread, std::abs(f[static_cast<size_t>(v)] - (loop == &harmonic.start_loop ? a : b)));
   if (spread > kRimSpread * range)
-    throw InvalidInput(fmt::format("its rims are not levels of it (a rim vertex lies {:.1f} % of its range off its rim's "
-                                   "mean, more than {:.0f} %)",
-                                   100.0 * spread / range, 100.0 * kRimSpread));
+    throw InvalidInput(
+        fmt::format("its rims are not levels of it (a rim vertex lies {:.1f} % of its range off its rim's "
+                    "mean, more than {:.0f} %)",
+                    100.0 * spread / range, 100.0 * kRimSpread));
   TubeField out = harmonic;
   for (size_t v = 0; v < f.size(); ++v) out.value[v] = std::clamp((f[v] - a) / (b - a), 0.0, 1.0);
   for (int v : harmonic.start_loop) out.value[static_cast<size_t>(v)] = 0.0;
@@ -87,8 +89,8 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   // One boundary loop: a closed tube, knitted to its crown (tube_crown.h).
   const bool closed_end = validate_surface(surface0).num_boundary_loops == 1;
   if (closed_end && (options.crown_stitches < 8 || options.crown_stitches > 64))
-    throw InvalidInput(fmt::format("closed tube: the crown round must have 8..64 stitches, got {}",
-                                   options.crown_stitches));
+    throw InvalidInput(
+        fmt::format("closed tube: the crown round must have 8..64 stitches, got {}", options.crown_stitches));
   if (options.crown_directions < 1 || options.crown_directions > 36)
     throw InvalidInput(fmt::format("closed tube: the crown segment's directions tried must be 1..36, got {}",
                                    options.crown_directions));
@@ -98,7 +100,7 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   std::string init_error;
   try {
     d.initial = initial_fields(surface0);
-  } catch (const InvalidInput& e) {
+  } catch (const Error& e) {  // not one piece, a solver failure: the harmonic field may still do
     init_error = e.what();
   }
   struct Built {
@@ -154,6 +156,9 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
       c.knittable = true;
     } catch (const InvalidInput& e) {
       c.why_not = e.what();
+    } catch (const Error& e) {  // an initial field's solver or topology failure leaves the others
+      if (!init) throw;
+      c.why_not = e.what();
     }
     d.candidates.push_back(c);
     built.push_back(std::move(b));
@@ -163,13 +168,15 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
     pick = static_cast<int>(options.field) - 1;
     const TubeFieldCandidate& c = d.candidates[static_cast<size_t>(pick)];
     if (!c.knittable)
-      throw InvalidInput(fmt::format("{}: the {} field cannot be knitted in rounds: {}; try --tube-field auto",
-                                     options.surface_name, tube_field_name(c.kind), c.why_not));
+      throw InvalidInput(
+          fmt::format("{}: the {} field cannot be knitted in rounds: {}; try --tube-field auto",
+                      options.surface_name, tube_field_name(c.kind), c.why_not));
   } else {
     for (size_t i = 0; i < d.candidates.size(); ++i) {
       const TubeFieldCandidate& c = d.candidates[i];
       if (!c.knittable) continue;
-      if (pick < 0 || c.estimate <= d.candidates[static_cast<size_t>(pick)].estimate - 1.0) pick = static_cast<int>(i);
+      if (pick < 0 || c.estimate <= d.candidates[static_cast<size_t>(pick)].estimate - 1.0)
+        pick = static_cast<int>(i);
     }
     if (pick < 0) throw InvalidInput(d.candidates.front().why_not);
   }
@@ -212,8 +219,9 @@ TubeDesign design_tube(const TriMesh& surface0, const TubeDesignOptions& options
   const bool wedges = sr.wedges > 0;
   if (!wedges) {
     d.levels = round_levels(surface, d.field, options.params.stitch_height);
-    d.rounds = tube_round_curves(surface, d.field, d.levels.levels,
-                                 seam_choices.empty() ? std::nullopt : std::optional<Vec3>(seam_choices.front()));
+    d.rounds =
+        tube_round_curves(surface, d.field, d.levels.levels,
+                          seam_choices.empty() ? std::nullopt : std::optional<Vec3>(seam_choices.front()));
   } else {
     d.levels.levels = sr.levels;
     for (const auto& a : sr.spacing.along) d.levels.mean_length += a.back() / static_cast<double>(sr.spacing.along.size());

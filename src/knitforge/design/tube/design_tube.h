@@ -89,9 +89,10 @@ struct TubeTimings {
 /// Everything the route produces.
 struct TubeDesign {
   TubeField field;
-  TubeFieldKind field_kind = TubeFieldKind::Harmonic;   ///< the candidate knitted
-  std::vector<TubeFieldCandidate> candidates;           ///< harmonic, fiedler, orthogonal
-  InitialFields initial;  ///< the Fiedler vector and its orthogonal field on the input surface (empty if they failed)
+  TubeFieldKind field_kind = TubeFieldKind::Harmonic;  ///< the candidate knitted
+  std::vector<TubeFieldCandidate> candidates;          ///< harmonic, fiedler, orthogonal
+  InitialFields
+      initial;  ///< the Fiedler vector and its orthogonal field on the input surface (empty if they failed)
   /// Divergence of the field's normalised gradient on the surface it lives
   /// on (DivergenceOptions::along_gradient, seed §3.3.8): its
   /// transfer_estimate() is an ESTIMATE of increases + decreases.

@@ -175,7 +175,8 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
     const int back = static_cast<int>(live.back().size()) - front;
     if (front != back)
       throw InvalidInput(fmt::format(
-          "tube tessellation: the last round's halves hold {} and {} stitches, the closing seam needs them equal; "
+          "tube tessellation: the last round's halves hold {} and {} stitches, the closing seam needs them "
+          "equal; "
           "the rounds narrow faster than the decreases can follow (at most every other wale per round): more "
           "crown stitches or a surface that narrows more slowly",
           front, back));

@@ -5,8 +5,8 @@
 #include <limits>
 #include <numbers>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "knitforge/design/shortcolumn/divergence_metric.h"
 #include "knitforge/design/tube/tube_field.h"
@@ -52,7 +52,8 @@ int superlevel_pieces(const Halfedges& he, const std::vector<double>& d, double 
 double mean_edge_length(const TriMesh& m) {
   double sum = 0.0;
   for (const auto& f : m.faces)
-    for (int k = 0; k < 3; ++k) sum += (m.vertices[static_cast<size_t>(f[k])] - m.vertices[static_cast<size_t>(f[(k + 1) % 3])]).norm();
+    for (int k = 0; k < 3; ++k)
+      sum += (m.vertices[static_cast<size_t>(f[k])] - m.vertices[static_cast<size_t>(f[(k + 1) % 3])]).norm();
   return m.faces.empty() ? 0.0 : sum / (3.0 * static_cast<double>(m.faces.size()));
 }
 
@@ -63,7 +64,9 @@ double shortest_loop_length(const TriMesh& m) {
   for (const auto& loop : he.boundary_loops()) {
     double len = 0.0;
     for (size_t i = 0; i < loop.size(); ++i)
-      len += (m.vertices[static_cast<size_t>(loop[(i + 1) % loop.size()])] - m.vertices[static_cast<size_t>(loop[i])]).norm();
+      len += (m.vertices[static_cast<size_t>(loop[(i + 1) % loop.size()])] -
+              m.vertices[static_cast<size_t>(loop[i])])
+                 .norm();
     best = std::min(best, len);
   }
   return best;
@@ -90,7 +93,8 @@ Vec3 thinnest_axis(const TriMesh& m) {
   std::vector<Vec3> c(m.faces.size());
   for (size_t f = 0; f < m.faces.size(); ++f) {
     c[f] = (m.vertices[static_cast<size_t>(m.faces[f][0])] + m.vertices[static_cast<size_t>(m.faces[f][1])] +
-            m.vertices[static_cast<size_t>(m.faces[f][2])]) / 3.0;
+            m.vertices[static_cast<size_t>(m.faces[f][2])]) /
+           3.0;
     mean += area[f] * c[f];
     total += area[f];
   }
@@ -115,9 +119,11 @@ std::vector<double> rim_distance(const TriMesh& disk, double stitch_width) {
 
 TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::string& what) {
   if (!(o.crown_length > 0.0) || !std::isfinite(o.crown_length))
-    throw InvalidInput(fmt::format("{}: the crown round's length must be positive, got {} mm", what, o.crown_length));
+    throw InvalidInput(
+        fmt::format("{}: the crown round's length must be positive, got {} mm", what, o.crown_length));
   if (o.directions < 1 || o.directions > 36)
-    throw InvalidInput(fmt::format("{}: the crown segment's directions tried must be 1..36, got {}", what, o.directions));
+    throw InvalidInput(
+        fmt::format("{}: the crown segment's directions tried must be 1..36, got {}", what, o.directions));
   if (!(o.stitch_width > 0.0))
     throw InvalidInput(fmt::format("{}: the stitch width must be positive, got {} mm", what, o.stitch_width));
   const SurfaceReport rep = validate_surface(disk);
@@ -131,7 +137,8 @@ TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::strin
   const Halfedges he = build_halfedges(disk.num_vertices(), disk.faces);
   const std::vector<int> rim = he.boundary_loops().front();
   if (!o.rim_distance.empty() && o.rim_distance.size() != static_cast<size_t>(disk.num_vertices()))
-    throw InvalidInput(fmt::format("{}: {} rim distances for {} vertices", what, o.rim_distance.size(), disk.num_vertices()));
+    throw InvalidInput(fmt::format("{}: {} rim distances for {} vertices", what, o.rim_distance.size(),
+                                   disk.num_vertices()));
   const std::vector<double> d = o.rim_distance.empty() ? rim_distance(disk, o.stitch_width) : o.rim_distance;
   int top = 0;
   if (o.crown_vertex) {
@@ -140,7 +147,8 @@ TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::strin
       throw InvalidInput(fmt::format("{}: crown vertex {} is not a vertex of the surface", what, top));
   } else {
     for (int v = 0; v < disk.num_vertices(); ++v)
-      if (std::isfinite(d[static_cast<size_t>(v)]) && d[static_cast<size_t>(v)] > d[static_cast<size_t>(top)]) top = v;
+      if (std::isfinite(d[static_cast<size_t>(v)]) && d[static_cast<size_t>(v)] > d[static_cast<size_t>(top)])
+        top = v;
   }
   TubeCrown c;
   c.crown_vertex = top;
@@ -153,7 +161,8 @@ TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::strin
   const double reach = s / 2.0 + c.cap_radius;
   if (!(c.rim_to_crown > 2.0 * reach)) {
     throw InvalidInput(fmt::format(
-        "{}: the crown lies {:.1f} mm from the rim, too close for a closed tube whose last round is {:.1f} mm "
+        "{}: the crown lies {:.1f} mm from the rim, too close for a closed tube whose last round is {:.1f} "
+        "mm "
         "round (the rounds need at least {:.1f} mm); fewer crown stitches or a smaller stitch, or design it "
         "without --tube",
         what, c.rim_to_crown, o.crown_length, 2.0 * reach));
@@ -196,16 +205,23 @@ TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::strin
   for (int j = 0; j < (s > 0.0 ? o.directions : 1); ++j) {
     const double phi = std::numbers::pi * j / o.directions;
     const Vec3 t = std::cos(phi) * t0 + std::sin(phi) * t1;
-    const Vec3 a = c.crown - 0.5 * s * t, b = c.crown + 0.5 * s * t;
-    std::vector<Vec3> line;
-    if (s > 0.0) {
-      for (const auto& pl : source_from_polyline(disk, {a, c.crown, b}).polylines)
+    // The tangent segment's ends are pulled in by the projection onto a
+    // curved surface: stretch them until the section is s long (1 %).
+    std::vector<Vec3> line{c.crown};
+    double reach_out = s;
+    for (int it = 0; s > 0.0 && it < 6; ++it) {
+      line.clear();
+      const Vec3 half = 0.5 * reach_out * t;
+      for (const auto& pl : source_from_polyline(disk, {c.crown - half, c.crown, c.crown + half}).polylines)
         for (const SurfacePoint& p : pl) line.push_back(surface_point_position(disk, p));
-    } else {
-      line.push_back(c.crown);
+      double along = 0.0;
+      for (size_t i = 0; i + 1 < line.size(); ++i) along += (line[i + 1] - line[i]).norm();
+      if (!(along > 0.0) || std::abs(along - s) <= 0.01 * s) break;
+      reach_out = std::min(4.0 * s, reach_out * s / along);
     }
     std::vector<double> keep(static_cast<size_t>(disk.num_vertices()));
-    for (size_t v = 0; v < keep.size(); ++v) keep[v] = distance_to_polyline(disk.vertices[v], line) - c.cap_radius;
+    for (size_t v = 0; v < keep.size(); ++v)
+      keep[v] = distance_to_polyline(disk.vertices[v], line) - c.cap_radius;
     TriMesh annulus = clip_mesh_by_field(disk, keep).mesh;
     double score = 0.0;
     try {
@@ -228,13 +244,13 @@ TubeCrown cut_crown(const TriMesh& disk, const CrownOptions& o, const std::strin
   // Ties (within kDirectionTie): across the surface's thinnest axis.
   Vec3 thin = thinnest_axis(disk);
   thin -= thin.dot(n) * n;
-  const Tried* win = nullptr;
-  for (const Tried& x : tried) {
+  const auto key = [&](const Tried& y) { return thin.norm() > 0.3 ? std::abs(y.t.dot(thin)) : -y.score; };
+  Tried* win = nullptr;
+  for (Tried& x : tried) {
     if (x.score > best + kDirectionTie) continue;
-    const auto key = [&](const Tried& y) { return thin.norm() > 0.3 ? std::abs(y.t.dot(thin)) : -y.score; };
     if (!win || key(x) > key(*win) + 1e-12) win = &x;
   }
-  c.annulus = win->annulus;
+  c.annulus = std::move(win->annulus);
   c.direction_degrees = 180.0 * win->j / o.directions;
   c.segment_start = win->a;
   c.segment_end = win->b;

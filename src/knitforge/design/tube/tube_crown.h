@@ -17,7 +17,8 @@
 ///
 /// The segment: the normal section of the surface through the crown point
 /// in a tangent direction phi (source_from_polyline() on the three points
-/// crown -+ s/2 t(phi) and the crown), s long. The surface within distance
+/// crown -+ s/2 t(phi) and the crown, the ends moved out until the section
+/// is s long along the surface). The surface within distance
 /// w of it (w = the slit's half-width, at least the mean edge length so that
 /// the cut finds vertices; the straight-line distance to the segment's
 /// polyline, which at a few millimetres is the geodesic one wherever the
@@ -66,8 +67,8 @@ inline constexpr double kDirectionTie = 1.0;
 
 /// Options of cut_crown().
 struct CrownOptions {
-  double crown_length = 42.0;       ///< mm: the crown ring's length (crown stitches x sw), > 0
-  double stitch_width = 3.5;        ///< mm: scores the directions (transfer estimate)
+  double crown_length = 42.0;        ///< mm: the crown ring's length (crown stitches x sw), > 0
+  double stitch_width = 3.5;         ///< mm: scores the directions (transfer estimate)
   double min_slit_half_width = 0.0;  ///< mm: w at least this (and at least the mean edge length)
   int directions = 6;                ///< segment directions tried, 1..36
   std::optional<int> crown_vertex;   ///< the crown point; default: the vertex farthest from the rim
@@ -78,16 +79,17 @@ struct CrownOptions {
 
 /// A disk cut open along its crown segment.
 struct TubeCrown {
-  TriMesh annulus;          ///< the surface without the slit round the segment: two boundary loops
+  TriMesh annulus;            ///< the surface without the slit round the segment: two boundary loops
   Vec3 crown = Vec3::Zero();  ///< the crown point (mm)
-  int crown_vertex = -1;    ///< its vertex in the disk
+  int crown_vertex = -1;      ///< its vertex in the disk
   double rim_to_crown = 0;  ///< its geodesic distance from the rim (mm)
   double cap_radius = 0;    ///< w: the slit's geodesic half-width (mm)
   double cap_area = 0;      ///< area cut off (mm^2)
-  Vec3 segment_start = Vec3::Zero(), segment_end = Vec3::Zero();  ///< ends of the crown segment (on the surface, mm)
-  double segment_length = 0;        ///< s (mm, along the surface)
-  double ring_length = 0;           ///< the crown ring's length as cut (mm)
-  double direction_degrees = 0;     ///< phi of the winner
+  Vec3 segment_start = Vec3::Zero(),
+       segment_end = Vec3::Zero();       ///< ends of the crown segment (on the surface, mm)
+  double segment_length = 0;             ///< s (mm, along the surface)
+  double ring_length = 0;                ///< the crown ring's length as cut (mm)
+  double direction_degrees = 0;          ///< phi of the winner
   std::vector<double> direction_scores;  ///< per direction tried: transfer estimate (stitches)
 };
 

@@ -10,19 +10,25 @@ namespace knitforge {
 
 const char* tube_field_name(TubeFieldKind kind) {
   switch (kind) {
-    case TubeFieldKind::Auto: return "auto";
-    case TubeFieldKind::Harmonic: return "harmonic";
-    case TubeFieldKind::Fiedler: return "fiedler";
-    case TubeFieldKind::Orthogonal: return "orthogonal";
+    case TubeFieldKind::Auto:
+      return "auto";
+    case TubeFieldKind::Harmonic:
+      return "harmonic";
+    case TubeFieldKind::Fiedler:
+      return "fiedler";
+    case TubeFieldKind::Orthogonal:
+      return "orthogonal";
   }
   return "auto";
 }
 
 TubeFieldKind parse_tube_field(const std::string& name) {
-  for (TubeFieldKind k : {TubeFieldKind::Auto, TubeFieldKind::Harmonic, TubeFieldKind::Fiedler, TubeFieldKind::Orthogonal})
+  for (TubeFieldKind k :
+       {TubeFieldKind::Auto, TubeFieldKind::Harmonic, TubeFieldKind::Fiedler, TubeFieldKind::Orthogonal})
     if (name == tube_field_name(k)) return k;
   throw InvalidInput(fmt::format(
-      "tube field '{}' is not one of auto (the lowest-scoring knittable one), harmonic, fiedler, orthogonal", name));
+      "tube field '{}' is not one of auto (the lowest-scoring knittable one), harmonic, fiedler, orthogonal",
+      name));
 }
 
 InitialFields initial_fields(const TriMesh& surface) {
@@ -32,7 +38,8 @@ InitialFields initial_fields(const TriMesh& surface) {
   out.fiedler_eigenvalue = e.values.front();
   std::vector<Vec3> d = field_face_gradients(surface, out.fiedler);
   for (Vec3& g : d) g = g.norm() > 0.0 ? Vec3(g / g.norm()) : Vec3(Vec3::Zero());
-  const LaplacianEigenvectors o = stiffness_eigenvectors(surface, directional_stiffness(surface, d, kOrthogonalSmoothing), {});
+  const LaplacianEigenvectors o =
+      stiffness_eigenvectors(surface, directional_stiffness(surface, d, kOrthogonalSmoothing), {});
   out.converged = e.converged && o.converged;
   out.orthogonal = o.vectors.front();
   out.orthogonal_eigenvalue = o.values.front();

@@ -61,10 +61,10 @@ inline constexpr double kRimSpread = 0.02;
 
 /// The two initial fields on one surface.
 struct InitialFields {
-  std::vector<double> fiedler, orthogonal;  ///< one value per vertex (M-unit norm)
+  std::vector<double> fiedler, orthogonal;                   ///< one value per vertex (M-unit norm)
   double fiedler_eigenvalue = 0, orthogonal_eigenvalue = 0;  ///< 1/mm^2
-  double orthogonal_alignment = 0;   ///< its gradient_alignment() with the Fiedler vector
-  bool converged = false;            ///< the eigen-solver's
+  double orthogonal_alignment = 0;  ///< its gradient_alignment() with the Fiedler vector
+  bool converged = false;           ///< the eigen-solver's
 };
 
 /// The Fiedler vector and the field orthogonal to it (see the file comment).
@@ -76,8 +76,8 @@ struct TubeFieldCandidate {
   TubeFieldKind kind = TubeFieldKind::Harmonic;
   double initial_estimate = 0;  ///< transfer estimate of the initial field itself on the input surface
   bool knittable = false;
-  std::string why_not;          ///< when not knittable
-  double estimate = 0;          ///< transfer estimate of the field knitted (knittable only)
+  std::string why_not;  ///< when not knittable
+  double estimate = 0;  ///< transfer estimate of the field knitted (knittable only)
 };
 
 }  // namespace knitforge
