@@ -33,6 +33,14 @@ void add_tube_flags(CLI::App& cmd, TubeFlags& f) {
                  "With --tube on a surface with one boundary loop: stitches of the last round, joined in pairs "
                  "across the beds to close the crown (8..64)")
       ->check(CLI::Range(8, 64));
+  cmd.add_option(
+      "--tube-field", f.tube_field,
+      "With --tube: the governing field whose isocurves are the rounds (seed 3.3.8; docs/tubes.md "
+      "\"Choosing the field\"): auto (default: the knittable candidate with the lowest divergence "
+      "estimate of increases + decreases; harmonic unless another scores at least one stitch lower), "
+      "harmonic (0 on one rim, 1 on the other rim or the crown segment), fiedler (the Fiedler vector of "
+      "the cotangent Laplacian) or orthogonal (the field orthogonal to it); a forced field that cannot be "
+      "knitted in rounds is refused, saying why");
   cmd.add_flag("--no-tube-short-rows", f.no_tube_short_rows,
                "With --tube: plain rounds only, one stitch height apart on average, even where the tube bends "
                "(default: full rounds one stitch height apart on the inside of a bend and wedges of short rows "
@@ -43,6 +51,8 @@ std::optional<TubeCommandOptions> tube_command(const TubeFlags& f, const std::ve
   if (!f.tube) {
     if (f.no_tube_short_rows)
       throw UsageError("--no-tube-short-rows applies to --tube only; leave it out or add --tube");
+    if (f.tube_field != "auto")
+      throw UsageError("--tube-field applies to --tube only; leave it out or add --tube");
     return std::nullopt;
   }
   for (const CLI::Option* opt : sheet_only)
@@ -53,6 +63,11 @@ std::optional<TubeCommandOptions> tube_command(const TubeFlags& f, const std::ve
   TubeCommandOptions t;
   t.short_rows = !f.no_tube_short_rows;
   t.crown_stitches = f.crown_stitches;
+  try {
+    t.field = parse_tube_field(f.tube_field);
+  } catch (const InvalidInput& e) {
+    throw UsageError(fmt::format("--tube-field: {}", e.what()));
+  }
   return t;
 }
 
@@ -70,6 +85,7 @@ int run_tube_design(const TubeCommandOptions& o) {
   auto begun = std::make_shared<int>(0);
   opt.progress = [begun](const std::string& stage) { note(fmt::format("[{:3d} %] {} ...", 100 * (*begun)++ / 5, stage)); };
   opt.crown_stitches = o.crown_stitches;
+  opt.field = o.field;
   const TubeDesign d = design_tube(input, opt);
   const bool closed_end = d.map.closed_end;
   const TriMesh& field_mesh = closed_end ? d.cut_surface : input;
@@ -121,18 +137,38 @@ int run_tube_design(const TubeCommandOptions& o) {
                      {"area_mm2", d.surface_area}};
   report["route"] = "tube";
   report["parameters"] = {{"stitch_width_mm", params.stitch_width}, {"stitch_height_mm", params.stitch_height}};
-  report["field"] = {{"kind", "harmonic, 0 on the start rim, 1 on the end rim"},
-                     {"start_rim_mm", d.field.start_length},
-                     {"end_rim_mm", d.field.end_length},
-                     {"interior_extrema", d.field.interior_extrema},
-                     {"mean_rim_to_rim_mm", d.levels.mean_length},
-                     {"divergence",
-                      {{"of", "the normalised gradient (seed 3.3.8), on the surface the field lives on"},
-                       {"metric_mm", d.divergence.total},
-                       {"per_area_per_mm", d.divergence.normalised()},
-                       {"shaping_stitches_estimate", d.divergence.transfer_estimate(params.stitch_width)},
-                       {"shaping_stitches_designed", d.increases + d.decreases},
-                       {"flat_faces", d.divergence.flat_faces}}}};
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const TubeFieldCandidate& c : d.candidates) {
+    nlohmann::json j = {{"name", tube_field_name(c.kind)},
+                        {"initial_shaping_stitches_estimate", c.initial_estimate},
+                        {"knittable", c.knittable}};
+    if (c.knittable) {
+      j["shaping_stitches_estimate"] = c.estimate;
+    } else {
+      j["why_not"] = c.why_not;
+    }
+    candidates.push_back(j);
+  }
+  report["field"] = {
+      {"kind", d.field_kind == TubeFieldKind::Harmonic
+                   ? "harmonic, 0 on the start rim, 1 on the end rim (or crown segment)"
+                   : std::string(tube_field_name(d.field_kind)) + ", 0 on the start rim, 1 on the end rim"},
+      {"chosen", tube_field_name(d.field_kind)},
+      {"asked", tube_field_name(o.field)},
+      {"candidates", candidates},
+      {"fiedler_eigenvalue_per_mm2", d.initial.fiedler_eigenvalue},
+      {"orthogonal_gradient_alignment", d.initial.orthogonal_alignment},
+      {"start_rim_mm", d.field.start_length},
+      {"end_rim_mm", d.field.end_length},
+      {"interior_extrema", d.field.interior_extrema},
+      {"mean_rim_to_rim_mm", d.levels.mean_length},
+      {"divergence",
+       {{"of", "the normalised gradient (seed 3.3.8), on the surface the field lives on"},
+        {"metric_mm", d.divergence.total},
+        {"per_area_per_mm", d.divergence.normalised()},
+        {"shaping_stitches_estimate", d.divergence.transfer_estimate(params.stitch_width)},
+        {"shaping_stitches_designed", d.increases + d.decreases},
+        {"flat_faces", d.divergence.flat_faces}}}};
   report["counts"] = {{"stitches", d.stitch_mesh.num_stitches()},
                       {"quads", types[static_cast<int>(StitchType::Knit)]},
                       {"increases", d.increases},
@@ -172,7 +208,11 @@ int run_tube_design(const TubeCommandOptions& o) {
                             {"closing_pairs", pairs},
                             {"rim_to_crown_mm", d.rim_to_crown},
                             {"crown_cap_radius_mm", d.crown_radius},
-                            {"crown_cap_area_mm2", d.crown_area}};
+                            {"crown_cap_area_mm2", d.crown_area},
+                            {"crown_segment_mm", d.crown_segment},
+                            {"crown_ring_mm", d.crown_ring},
+                            {"crown_segment_direction_degrees", d.crown_direction},
+                            {"crown_direction_shaping_estimates", d.crown_direction_scores}};
   Timer tm;
   bool machine_ok = true;
   nlohmann::json machine_check;
@@ -204,12 +244,23 @@ int run_tube_design(const TubeCommandOptions& o) {
   note(fmt::format("tube: divergence of the field's normalised gradient {:.0f} mm: about {:.0f} shaping stitches "
                    "(estimate; {} increases + decreases designed) -> divergence.ply",
                    d.divergence.total, d.divergence.transfer_estimate(params.stitch_width), d.increases + d.decreases));
+  {
+    std::string line;
+    for (const TubeFieldCandidate& c : d.candidates)
+      line += c.knittable
+                  ? fmt::format("{}{} {:.0f}", line.empty() ? "" : ", ", tube_field_name(c.kind), c.estimate)
+                  : fmt::format("{}{} not knittable", line.empty() ? "" : ", ", tube_field_name(c.kind));
+    note(fmt::format("tube: field {} ({}); candidates' shaping estimates: {}", tube_field_name(d.field_kind),
+                     o.field == TubeFieldKind::Auto ? "the lowest knittable" : "forced by --tube-field",
+                     line));
+  }
   if (closed_end)
-    note(fmt::format("tube: closed at the crown: last round {} stitches ({} pairs joined across the beds and bound "
-                     "off), crown {:.1f} mm from the rim, a cap of {:.0f} mm^2 (radius {:.1f} mm) gathered by the "
-                     "closing seam",
-                     d.round_stitches.back(), pairs, d.rim_to_crown, d.crown_area,
-                     d.crown_radius));
+    note(fmt::format(
+        "tube: closed at the crown: last round {} stitches ({} asked; {} pairs joined across the beds "
+        "and bound off) along a {:.1f} mm crown segment at {:.0f} degrees (ring {:.1f} mm, slit "
+        "{:.1f} mm wide, {:.0f} mm^2), crown {:.1f} mm from the rim",
+        d.round_stitches.back(), o.crown_stitches, pairs, d.crown_segment, d.crown_direction, d.crown_ring,
+        2.0 * d.crown_radius, d.crown_area, d.rim_to_crown));
   for (const std::string& line : shape_notes) note(line);
   if (!knittable) {
     const KnittabilityReport& r = d.map_check.ok() ? d.mesh_check : d.map_check;

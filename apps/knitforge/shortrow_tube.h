@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "knitforge/design/tube/tube_field_candidates.h"
 
 namespace knitforge::cli {
 
@@ -16,6 +17,7 @@ struct TubeCommandOptions {
   bool json = false, ascii = false, no_report = false;
   bool short_rows = true;  ///< !--no-tube-short-rows
   int crown_stitches = 12;  ///< --crown-stitches (a closed tube: one boundary loop)
+  TubeFieldKind field = TubeFieldKind::Auto;  ///< --tube-field
   DesignMachineOptions mach;
   DesignPredictOptions predict;  ///< the converged predicted shape (report_design_shape())
   bool no_evaluate = false;      ///< --no-evaluate: no prediction unless --predict
@@ -26,14 +28,16 @@ struct TubeFlags {
   bool tube = false;
   bool no_tube_short_rows = false;
   int crown_stitches = 12;
+  std::string tube_field = "auto";
 };
-/// Adds --tube, --crown-stitches and --no-tube-short-rows to cmd.
+/// Adds --tube, --crown-stitches, --tube-field and --no-tube-short-rows to cmd.
 void add_tube_flags(CLI::App& cmd, TubeFlags& flags);
 
 /// With --tube: the options the tube route takes from the command (the
 /// common ones), after refusing every option in `sheet_only` that was given
-/// (the sheet route's field, seams, ...: UsageError naming it). Without
-/// --tube: refuses --no-tube-short-rows and returns nothing.
+/// (the sheet route's field, seams, ...: UsageError naming it), and an
+/// unknown --tube-field. Without --tube: refuses --no-tube-short-rows and
+/// --tube-field and returns nothing.
 /// \throw UsageError as above.
 std::optional<TubeCommandOptions> tube_command(const TubeFlags& flags, const std::vector<const CLI::Option*>& sheet_only);
 

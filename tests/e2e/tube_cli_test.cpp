@@ -118,14 +118,17 @@ TEST_F(Cli, ShortrowTubeKnitsTheSockWithAHeelAndAClosedToe) {
   const std::string csv = slurp(fs::path(out) / "knitting_map.csv");
   EXPECT_NE(csv.find(":close"), std::string::npos);
   EXPECT_NE(csv.find(",-,"), std::string::npos) << "no short row at the heel";
+  // the toe closes along the crown segment with the asked 12 stitches
+  EXPECT_NE(r.err.find("last round 12 stitches (12 asked;"), std::string::npos) << r.err;
   expect_knitted_as_designed(out + "/knitting_map.csv", path("sock.k"), "kniterate");
 }
 
 // Scanned-style closed tubes: a leg and a head cut out of a noisy stand-in
 // for a scan by the fitted body model (the leg's wedges once stacked two
-// turn pairs in one wale; its last round's halves lie 5 needles apart on
-// the Kniterate, beyond its racking, so the closing seam walks the loops
-// over).
+// turn pairs in one wale; with a 16-stitch crown its last round's halves
+// lie 5 needles apart on the Kniterate, beyond its racking, so the closing
+// seam walks the loops over; with the default 12 along its crown segment
+// they no longer do).
 TEST_F(Cli, ShortrowTubeKnitsScannedLegAndHeadClosedOnKniterate) {
   CliRun r = run("body make --edge 22 --noise 2 --height 172 --chest 100 --waist 84 --hip 102 --pose a-pose -o " +
                  path("scan.obj"));
@@ -136,7 +139,9 @@ TEST_F(Cli, ShortrowTubeKnitsScannedLegAndHeadClosedOnKniterate) {
     r = run("body region " + path("fitted") + " --part " + part + " -o " + path(part + ".obj"));
     ASSERT_EQ(r.code, 0) << r.err;
     const std::string out = path(part);
-    r = run("shortrow " + path(part + ".obj") + " --tube --stitch 7x5.6 --machine kniterate --no-report -o " + out);
+    // the leg with a 16-stitch crown: its closing pairs lie beyond the racking
+    r = run("shortrow " + path(part + ".obj") + " --tube --stitch 7x5.6 --machine kniterate --no-report -o " +
+            out + (part == "left-leg" ? " --crown-stitches 16" : ""));
     ASSERT_EQ(r.code, 0) << part << ": " << r.err;
     EXPECT_NE(r.err.find("kniterate: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("closed at the crown"), std::string::npos) << r.err;
@@ -178,6 +183,48 @@ TEST_F(Cli, ShortcolumnTubeKnitsInTheRoundAndFlattenRefusesTube) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("use `knitforge shortrow sleeve --tube`"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("flat_bad")));
+}
+
+// --tube-field: the field is chosen by its divergence estimate (auto), or
+// forced; a forced field that cannot be knitted in rounds, an unknown name,
+// and the option without --tube are refused with what to do.
+TEST_F(Cli, ShortrowTubeFieldIsChosenOrForcedAndBadValuesAreRefused) {
+  // The built-in tube is short and wide (h 100 < pi r): its Fiedler vector
+  // runs round it, the field orthogonal to that along it.
+  const std::string out = path("tube_orth");
+  CliRun r = run("shortrow tube --tube --tube-field orthogonal --no-report --no-predict -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("tube: field orthogonal (forced by --tube-field)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("shima-swg091n2: VALID, knit graph MATCHES the map"), std::string::npos) << r.err;
+  const auto report = nlohmann::json::parse(slurp(fs::path(out) / "report.json"));
+  EXPECT_EQ(report["field"]["chosen"], "orthogonal");
+  EXPECT_EQ(report["field"]["asked"], "orthogonal");
+  ASSERT_EQ(report["field"]["candidates"].size(), 3u);
+  EXPECT_FALSE(report["field"]["candidates"][1]["knittable"].get<bool>());
+  expect_knitted_as_designed(out + "/knitting_map.csv", path("tube_orth.k"), "kniterate");
+  r = run("shortrow tube --tube --stitch 7x5.6 --edge 6 --no-report --no-predict --no-knitout -o " +
+          path("tube_auto"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("tube: field harmonic (the lowest knittable); candidates' shaping estimates: harmonic 0, "
+                 "fiedler not knittable, orthogonal "),
+      std::string::npos)
+      << r.err;
+
+  r = run("shortrow tube --tube --tube-field fiedler --no-predict -o " + path("tube_fiedler"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("the fiedler field cannot be knitted in rounds: its two rims lie on the same level"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("try --tube-field auto"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("tube_fiedler")));
+  r = run("shortrow tube --tube --tube-field geodesic -o " + path("tube_bad"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--tube-field: tube field 'geodesic' is not one of auto"), std::string::npos) << r.err;
+  r = run("shortrow tube --tube-field fiedler -o " + path("tube_bad"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--tube-field applies to --tube only"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("tube_bad")));
 }
 
 // A scanned-style annulus: the sleeve remeshed at 4 mm, every vertex moved

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -41,6 +42,15 @@ std::vector<int> choose_decreases(int c, int d, double phase) {
     if (best < 0) break;
     taken[static_cast<size_t>(best)] = 1;
     chosen.push_back(best);
+  }
+  // The nearest-first choice can block itself when d nears (c - 1) / 2:
+  // then every other wale from 1, shifted by the phase within the room left.
+  const int most = (c - 1) / 2;
+  if (static_cast<int>(chosen.size()) < std::min(d, most)) {
+    const int n = std::min(d, most), room = c - 1 - 2 * n;
+    const int offset = std::min(room, static_cast<int>(std::floor(phase * (room + 1))));
+    chosen.clear();
+    for (int j = 0; j < n; ++j) chosen.push_back(1 + offset + 2 * j);
   }
   return chosen;
 }
@@ -109,9 +119,20 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
     live[0] = f;
   }
   if (K >= 1) live[1] = live[0];
+  // A closed tube: the most stitches round k may hold for the crown ring's
+  // count to be reached at round K - 1 (a half of h can fall to h - (h - 1)
+  // / 2 in one round, so round k - 1 may hold 2 m_k - 2).
+  std::vector<int> cap(rounds.size(), std::numeric_limits<int>::max());
+  if (equal_halves && K >= 2) {
+    cap[static_cast<size_t>(K - 1)] = t.ideal[static_cast<size_t>(K)];
+    for (int k = K - 2; k >= 1; --k)
+      cap[static_cast<size_t>(k)] = std::min(1 << 20, 2 * cap[static_cast<size_t>(k + 1)] - 2);
+  }
   int shaping_rows = 0;
   for (int k = 1; k + 1 < K; ++k) {
-    const int want = t.ideal[static_cast<size_t>(k + 1)];
+    // A closed tube's last row may not shape (rule boundary-apex), so the
+    // round below the crown ring takes the ring's count (cap).
+    const int want = std::min(t.ideal[static_cast<size_t>(k + 1)], cap[static_cast<size_t>(k + 1)]);
     std::vector<int> next;
     bool shaped = false;
     int front_next = 0;
@@ -122,7 +143,10 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
         if (c >= lo && c < hi) cols.push_back(c);
       const int c = static_cast<int>(cols.size());
       const int target = half == 0 ? (want + 1) / 2 : equal_halves ? front_next : want / 2;
-      const int delta = std::clamp(target - c, -max_change(c), max_change(c));
+      // A closed tube may decrease every other wale where its rounds narrow
+      // fast (the crown): its last round must reach the asked count.
+      const int fall = equal_halves ? std::max(max_change(c), (c - 1) / 2) : max_change(c);
+      const int delta = std::clamp(target - c, -fall, max_change(c));
       const double phase = std::fmod(kGolden * (shaping_rows + 1) + 0.5 * half, 1.0);
       if (delta < 0 && c + delta >= 2) {
         std::vector<char> drop(static_cast<size_t>(c), 0);
@@ -151,8 +175,9 @@ RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& 
     const int back = static_cast<int>(live.back().size()) - front;
     if (front != back)
       throw InvalidInput(fmt::format(
-          "tube tessellation: the last round's halves hold {} and {} stitches, the closing seam needs them equal; "
-          "the rounds narrow faster than the decreases can follow (at most a quarter of a half per round): more "
+          "tube tessellation: the last round's halves hold {} and {} stitches, the closing seam needs them "
+          "equal; "
+          "the rounds narrow faster than the decreases can follow (at most every other wale per round): more "
           "crown stitches or a surface that narrows more slowly",
           front, back));
   }

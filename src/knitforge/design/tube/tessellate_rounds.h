@@ -58,7 +58,13 @@ struct RoundWales {
 /// where wales end and start).
 /// With `equal_halves` (a closed tube, tube_crown.h) the back half follows
 /// the front half's count instead of floor(m/2), so that the last round's
-/// halves hold equally many stitches (the closing seam joins them in pairs).
+/// halves hold equally many stitches (the closing seam joins them in pairs),
+/// and a half may lose up to floor((h - 1) / 2) stitches in one round (every
+/// other wale but the first and last: still never two decreases side by
+/// side) where its round narrows faster than a quarter of it per round (the
+/// crown), and the round below the last takes the last one's ideal count
+/// (the last row may not shape), so that the last round reaches the asked
+/// count.
 /// \throw InvalidInput for fewer than two rounds or an invalid stitch size;
 ///        with equal_halves, when the last round's halves still differ.
 RoundWales round_wales(const std::vector<RoundCurve>& rounds, const KnitParams& params, bool equal_halves = false);

@@ -24,6 +24,18 @@ std::vector<double> wale_fractions(const std::vector<int>& live, int half) {
 
 // One map row: a round of full-round interval k, or a short row of the
 // wedge before it (wale indices lo..hi of round k's live wales).
+// Fraction of the arc length from the round's start to its point nearest p.
+double fraction_of(const RoundCurve& round, const Vec3& p) {
+  double best = 1e300, at = 0.0, walked = 0.0;
+  const size_t n = round.points.size();
+  for (size_t i = 0; i < n; ++i) {
+    const double dist = (round.points[i] - p).squaredNorm();
+    if (dist < best) best = dist, at = walked;
+    walked += (round.points[(i + 1) % n] - round.points[i]).norm();
+  }
+  return round.length > 0.0 ? at / round.length : 0.0;
+}
+
 struct PlannedRow {
   int k = 0;
   bool round = true;
@@ -40,7 +52,21 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
   // 1. The table, then again with the seam on the inside line.
   {
     const TubeSpacing first = tube_spacing(mesh, field, o.table_levels, o.table_fractions);
-    const Vec3 start = round_point_at(first.curves[0], static_cast<double>(first.inside_fraction) / first.fractions);
+    double at = static_cast<double>(first.inside_fraction) / first.fractions;
+    if (!o.seam_choices.empty()) {
+      const double outside = static_cast<double>(first.outside_fraction) / first.fractions;
+      // The outside line three quarters of the way round from the seam: the
+      // middle of the back half, where a wedge's first short row (from the
+      // seam back to the wedge) is shortest without the wedge reaching the
+      // seam.
+      double off = 2.0;
+      for (const Vec3& p : o.seam_choices) {
+        const double f = fraction_of(first.curves[0], p);
+        const double rel = outside - f - std::floor(outside - f);
+        if (std::abs(rel - 0.75) < off - 1e-9) off = std::abs(rel - 0.75), at = f;
+      }
+    }
+    const Vec3 start = round_point_at(first.curves[0], at);
     out.spacing = tube_spacing(mesh, field, o.table_levels, o.table_fractions, start);
   }
   const TubeSpacing& sp = out.spacing;
@@ -92,6 +118,10 @@ TubeShortRows tube_short_rows(const TriMesh& mesh, const TubeField& field, const
       int l = peak, r = peak;
       while (l > 0 && depth[static_cast<size_t>(l - 1)] >= t) --l;
       while (r + 1 < n && depth[static_cast<size_t>(r + 1)] >= t) ++r;
+      // Never the first or the last wale (beside the seam): the wedge's first
+      // short row runs from the seam back to it and may not cover the round.
+      l = std::max(l, 1);
+      r = std::min(r, n - 2);
       // Strictly inside the arc before: two turn pairs in one wale cannot
       // both be closed (rule stacked-short-row-ends); the rest waits for
       // the next rounds.

@@ -13,7 +13,8 @@
 ///     since the start rim exceeds the rows knitted there by at least one
 ///     stitch height get a wedge of short rows: depth d = floor((excess + 1)
 ///     / 2) turning pairs (two rows each), the arc of depth >= t the run of
-///     wales round the deepest one (at least 2 wales wide), each arc strictly
+///     wales round the deepest one (at least 2 wales wide, never the first or
+///     last wale of the round: no short row covers the round), each arc strictly
 ///     inside the one before (a wale holds one turn pair at most; what does
 ///     not fit waits for the next rounds). A wedge of m nested
 ///     arcs [l_t, r_t] knits, from the column where the round before ended
@@ -51,6 +52,15 @@ struct TubeShortRowOptions {
   /// A closed tube (tube_crown.h): the halves of the full rounds kept equal
   /// (round_wales() with equal_halves), so that the closing seam can pair them.
   bool equal_halves = false;
+  /// Where the seam (the left fold) may start on the start rim. Empty: on
+  /// the inside line of the bend (see the file comment). Otherwise: at the
+  /// one of these points (projected onto the start rim) from which the
+  /// outside line lies nearest three quarters of the way round (the middle
+  /// of the back half): the wedges there stay away from the seam, which no
+  /// open row may cross, and a wedge's first short row, from the seam back
+  /// to the wedge, stays short (a closed tube's crown segment ends,
+  /// design_tube.h).
+  std::vector<Vec3> seam_choices;
 };
 
 /// A tube with short-row wedges.
