@@ -17,9 +17,9 @@ namespace knitforge::cli {
 namespace {
 
 void print_evaluation(const DdrEvaluation& e, const std::string& what) {
-  note(fmt::format("{}: {} held-out bodies: EI {:.2f}, EP {:.2f} cm, EG {:.2f} (eq. 5.10-5.12; the seed at 256 x "
-                   "256: EP 3.17 cm)",
-                   what, e.samples, e.ei, e.ep_cm, e.eg));
+  note(fmt::format("{}: {} held-out bodies: EI {:.2f}, EP {:.2f} cm, EG {:.2f} (eq. 5.10-5.12; a flat prediction at "
+                   "the pelvis depth: EP {:.2f} cm; the seed at 256 x 256: EP 3.17 cm)",
+                   what, e.samples, e.ei, e.ep_cm, e.eg, e.flat_ep_cm));
   if (e.meshes > 0)
     note(fmt::format("{}: {} bodies rebuilt in 3D: {:.2f} cm mean distance to the true body as placed, {:.2f} cm "
                      "(RMS {:.2f}) after the best translation; the true body to the rebuilt one {:.2f} cm",
@@ -37,6 +37,7 @@ int run_ddr_train(const DdrTrainCli& o) {
   t.samples = o.samples;
   t.epochs = o.epochs;
   t.refine_epochs = o.refine_epochs;
+  t.learning_rate = o.learning_rate;
   t.max_azimuth_deg = o.max_azimuth;
   t.seed = o.seed;
   t.log = [](const std::string& line) { note("body ddr-train: " + line); };

@@ -14,9 +14,11 @@ void add_body_ddr_commands(CLI::App& body, Action& action, const DdrRunners& run
   train->add_option("--size", t->size, "Image side in pixels (16, 32, 64, 128, 256; default 64; the seed: 256)")
       ->check(CLI::IsMember({16, 32, 64, 128, 256}));
   train->add_option("--width", t->width, "Filters of the first layer (default 32; the seed: 64)")->check(CLI::Range(1, 64));
-  train->add_option("--samples", t->samples, "Training bodies (default 2000)")->check(CLI::Range(4, 1000000));
-  train->add_option("--epochs", t->epochs, "cGAN epochs (default 2; learning rate 1e-4, then 1e-5 for the second half)")
+  train->add_option("--samples", t->samples, "Training bodies (default 4000)")->check(CLI::Range(4, 1000000));
+  train->add_option("--epochs", t->epochs, "cGAN epochs (default 4; the learning rate drops tenfold for the second half)")
       ->check(CLI::Range(1, 100));
+  train->add_option("--learning-rate", t->learning_rate, "Adam's learning rate (default 1e-3; the seed: 1e-4, for far longer runs)")
+      ->check(number_in(1e-6, 0.1));
   train->add_option("--refine-epochs", t->refine_epochs, "Refinement epochs (default 1; 0: untrained refiner)")
       ->check(CLI::Range(0, 100));
   train->add_option("--test-samples", t->test_samples, "Held-out bodies for EI, EP, EG (default 100)")

@@ -19,11 +19,12 @@ struct DdrTrainCli {
   std::string outdir;
   int size = 64;
   int width = 32;
-  int samples = 2000;
-  int epochs = 2;
+  int samples = 4000;
+  int epochs = 4;
   int refine_epochs = 1;
   int test_samples = 100;
   int test_meshes = 5;
+  double learning_rate = 1e-3;
   double max_azimuth = 90;
   uint64_t seed = 1;
   int threads = 2;

@@ -17,7 +17,7 @@ using namespace knitforge_e2e;
 namespace {
 
 constexpr const char* kTinyTraining =
-    "--size 32 --width 4 --samples 8 --epochs 2 --refine-epochs 1 --test-samples 2 --test-meshes 1";
+    "--size 32 --width 4 --samples 8 --epochs 2 --refine-epochs 1 --learning-rate 2e-4 --test-samples 2 --test-meshes 1";
 
 }  // namespace
 
@@ -38,6 +38,9 @@ TEST_F(Cli, ReconstructFromARenderedPhotoWithATinyModel) {
   EXPECT_EQ(info["size"], 32);
   EXPECT_EQ(info["evaluation"]["test_samples"], 2);
   EXPECT_GT(info["evaluation"]["EP_cm"].get<double>(), 0.0);
+  EXPECT_GT(info["evaluation"]["EP_flat_cm"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(info["training"]["learning_rate"].get<double>(), 2e-4);
+  EXPECT_DOUBLE_EQ(info["training"]["epochs_log"][1]["learning_rate"].get<double>(), 2e-5);  // second half
 
   // The 64-pixel photo is scaled to the model's 32 pixels, keypoints with it.
   r = run(fmt::format("body reconstruct {} --keypoints {} --model {} -o {} --ddr {}", path("photo.png"),

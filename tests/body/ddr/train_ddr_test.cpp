@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "knitforge/body/ddr/evaluate_ddr.h"
@@ -105,6 +107,14 @@ TEST(EvaluateDdr, AveragesTheSeedsMetricsOverHeldOutBodies) {
   const DdrErrors e = ddr_errors(predict_ddr(model, input, ddr_test_seed(0)), s.ddr, s.foreground, 32);
   EXPECT_DOUBLE_EQ(one.ei, e.ei);
   EXPECT_DOUBLE_EQ(one.ep_cm, e.ep_cm);
+  // The flat prediction's EP is the mean |depth - pelvis depth| over the true foreground.
+  double sum = 0.0;
+  const size_t plane = s.foreground.size();
+  for (size_t i = 0; i < plane; ++i)
+    if (s.foreground[i] != 0) sum += std::abs(s.ddr[i]) + std::abs(s.ddr[plane + i]);
+  const int foreground = static_cast<int>(std::count(s.foreground.begin(), s.foreground.end(), 1));
+  EXPECT_NEAR(one.flat_ep_cm, sum / (2.0 * foreground) * kDdrDepthUnitMm / 10.0, 1e-6);
+  EXPECT_GT(one.flat_ep_cm, 1.0);  // a body is centimetres deep about its pelvis
   EXPECT_GT(three.mesh_to_body_cm, 0.0);
   EXPECT_GT(three.body_to_mesh_cm, 0.0);
   EXPECT_THROW(evaluate_ddr(model, ddr_body_model(), 0, 0), InvalidInput);

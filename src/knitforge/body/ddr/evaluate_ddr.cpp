@@ -47,6 +47,7 @@ DdrEvaluation evaluate_ddr(DdrModel& model, const BodyModel& body, int samples, 
     e.ei += err.ei;
     e.ep_cm += err.ep_cm;
     e.eg += err.eg;
+    e.flat_ep_cm += ddr_errors(std::vector<float>(s.ddr.size(), 0.0f), s.ddr, s.foreground, s.size).ep_cm;
     ++e.samples;
     if (i >= meshes) continue;
     ReconstructInput r{s.rgb, s.keypoints_px, {}};
@@ -77,6 +78,7 @@ DdrEvaluation evaluate_ddr(DdrModel& model, const BodyModel& body, int samples, 
   e.ei /= e.samples;
   e.ep_cm /= e.samples;
   e.eg /= e.samples;
+  e.flat_ep_cm /= e.samples;
   e.placed_mesh_to_body_cm = mean(placed) / 10.0;
   e.mesh_to_body_cm = mean(aligned) / 10.0;
   e.mesh_to_body_rms_cm = rms(aligned) / 10.0;
@@ -90,6 +92,7 @@ nlohmann::json ddr_evaluation_json(const DdrEvaluation& e) {
           {"EI", e.ei},
           {"EP_cm", e.ep_cm},
           {"EG", e.eg},
+          {"EP_flat_cm", e.flat_ep_cm},
           {"meshes", e.meshes},
           {"mesh_to_body_placed_mean_cm", e.placed_mesh_to_body_cm},
           {"mesh_to_body_mean_cm", e.mesh_to_body_cm},

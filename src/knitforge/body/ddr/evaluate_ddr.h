@@ -29,6 +29,9 @@ namespace knitforge {
 struct DdrEvaluation {
   int samples = 0;
   double ei = 0, ep_cm = 0, eg = 0;   ///< means over the test samples
+  /// EP of the flat prediction (both channels at the pelvis depth, 0): what
+  /// a network that learnt nothing about depth would score.
+  double flat_ep_cm = 0;
   int meshes = 0;
   double placed_mesh_to_body_cm = 0;  ///< mean distance, as placed
   double mesh_to_body_cm = 0;         ///< mean distance after the translation

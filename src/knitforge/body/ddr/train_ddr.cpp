@@ -57,12 +57,15 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 double estimate_ddr_training_seconds(const DdrTrainOptions& o) {
-  // Per sample and pass, proportional to pixels x width^2 (the convolutions'
-  // work); constants from measured runs (docs/bodies.md).
+  // Per sample and epoch, proportional to pixels x width^2 (the
+  // convolutions' work), plus rendering the sample; constants measured on
+  // this 2-core machine when idle (docs/bodies.md: 64 px, width 32, 2 threads:
+  // 0.0155 s per sample in a cGAN epoch, 0.0185 s in a refinement epoch,
+  // which also runs the generator and renders a turned view). A loaded
+  // machine takes several times longer.
   const double unit = static_cast<double>(o.size) * o.size * o.width * o.width / (64.0 * 64.0 * 32.0 * 32.0);
-  const double gan = 0.06 * unit * o.samples * o.epochs;
-  const double refine = 0.02 * unit * o.samples * o.refine_epochs * static_cast<double>(kViewDegrees.size());
-  return gan + refine + 0.004 * o.samples * (o.epochs + o.refine_epochs * 4.0);  // + rendering
+  const double render = 0.002 * static_cast<double>(o.size) * o.size / (64.0 * 64.0) + 0.001;
+  return o.samples * (o.epochs * (0.0125 * unit + render) + o.refine_epochs * (0.0155 * unit + render));
 }
 
 DdrModel train_ddr(const BodyModel& body, const DdrTrainOptions& o) {
