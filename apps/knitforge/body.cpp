@@ -308,8 +308,11 @@ int run_fit(const FitOptions& o) {
                              (*measured)[static_cast<size_t>(Measurement::WaistGirth)] / 10.0,
                              (*measured)[static_cast<size_t>(Measurement::HipGirth)] / 10.0)
                : fmt::format("model {} (no measurements, no garment regions: {})", model.name, model.labels_note);
-  const std::string work = evolution ? fmt::format("{} evaluations of the evolution strategy", fit.evaluations)
-                                     : fmt::format("{} iterations", fit.iterations);
+  std::string work = evolution ? fmt::format("{} evaluations of the evolution strategy", fit.evaluations)
+                               : fmt::format("{} iterations", fit.iterations);
+  // The rms of a fit stopped by its budget is not a minimum: say so (params.json: fit.converged).
+  if (!fit.converged)
+    work += evolution ? " (not converged: --evaluations raises the budget)" : " (not converged: --iterations raises the limit)";
   note(fmt::format("body fit: rms {:.2f} mm (from {:.1f}) in {}; {}; {:.1f} s -> {}/fitted.obj, "
                    "params.json, vertex_error.csv{}",
                    fit.rms_mm, fit.initial_rms_mm, work, sizes, seconds, o.outdir,

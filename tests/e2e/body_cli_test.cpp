@@ -48,6 +48,8 @@ TEST_F(Cli, BodyFitRecoversTheMeasurementsOfAMadeBody) {
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(slurp(path("fitted/params.json")));
   EXPECT_LT(j["fit"]["rms_mm"].get<double>(), 3.0);
+  // The message says "not converged" exactly when params.json does.
+  EXPECT_EQ(r.err.find("not converged") == std::string::npos, j["fit"]["converged"].get<bool>()) << r.err;
   EXPECT_NEAR(j["measurements_mm"]["stature"].get<double>(), 1820.0, 10.0);
   EXPECT_NEAR(j["measurements_mm"]["chest_girth"].get<double>(), 1040.0, 10.0);
   EXPECT_NEAR(j["measurements_mm"]["waist_girth"].get<double>(), 900.0, 10.0);
@@ -61,7 +63,7 @@ TEST_F(Cli, BodyFitRecoversTheMeasurementsOfAMadeBody) {
   r = run("body fit " + path("scan.obj") + " --objective scan --optimizer evolution --evaluations 150 -o " +
           path("es"));
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("152 evaluations of the evolution strategy"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("152 evaluations of the evolution strategy (not converged"), std::string::npos) << r.err;
   const auto es = nlohmann::json::parse(slurp(path("es/params.json")));
   EXPECT_EQ(es["fit"]["optimizer"], "(1+1) evolution strategy");
   EXPECT_EQ(es["fit"]["evaluations"], 152);
