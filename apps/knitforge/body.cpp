@@ -262,7 +262,7 @@ int run_fit(const FitOptions& o) {
   report["fit"] = {{"scan", o.input},
                    {"objective", cloud ? "eq. 5.4 cloud-to-template"
                                        : o.objective == "both" ? "eq. 5.1 + eq. 5.4 (both directions)"
-                                       : o.objective == "best" ? "best of three (eq. 5.1; both from it; both), by both directions"
+                                       : o.objective == "best" ? "best of five (eq. 5.1; both from it; both; the first two from the scan's girths), by both directions"
                                                                : "eq. 5.1 template-to-scan"},
                    {"rms_mm", fit.rms_mm},
                    {"initial_rms_mm", fit.initial_rms_mm},
@@ -508,8 +508,8 @@ void add_body_command(CLI::App& app, Action& action) {
       ->required();
   fit->add_option("--units", f->units, "Units of the scan: mm (default), cm, m")->check(CLI::IsMember({"mm", "cm", "m"}));
   fit->add_option("--objective", f->objective,
-                  "best (default): three fits (eq. 5.1; both directions from it; both from the initial pose), the "
-                  "one nearest by both distances; scan: eq. 5.1 only (head, hands and feet ignored, as the seed); "
+                  "best (default): five fits (eq. 5.1; both directions from it; both from the initial pose; the "
+                  "first two again from the scan's own girths), the one nearest by both distances; scan: eq. 5.1 only (head, hands and feet ignored, as the seed); "
                   "both: eq. 5.1 + 5.4; cloud: eq. 5.4 only, for a partial view such as a depth camera's (the "
                   "input's faces, if any, are ignored)")
       ->check(CLI::IsMember({"best", "scan", "both", "cloud"}));
@@ -528,7 +528,7 @@ void add_body_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"gauss-newton", "evolution"}));
   fit->add_option("--evaluations", f->evaluations,
                   "Most cost evaluations of the evolution strategy per fit (default 4000; --objective best runs "
-                  "three fits)")
+                  "five fits)")
       ->check(CLI::Range(1, 100000));
   fit->add_option("--seed", f->seed, "Seed of the evolution strategy's random steps (default 1)");
   fit->add_option("--max-distance", f->max_distance, "Pairs farther apart are ignored (mm, default 80)")

@@ -24,6 +24,16 @@ TEST(BodyJson, RoundTripsParameters) {
   EXPECT_EQ(q.translation_mm, p.translation_mm);
 }
 
+TEST(BodyJson, TheReportKeysOfBodyMakeAndBodyFitAreIgnoredOnReading) {
+  const BodyModel m = test::tube_body_model(false);
+  const auto j = nlohmann::json::parse(R"({"shape": {"inflate": 2}, "measurements_mm": {"stature": 1},
+    "joints_mm": {"tip": [1, 2, 3]}, "targets_mm": {}, "max_measurement_error_mm": 0, "newton_iterations": 3,
+    "vertex_parts": ["torso"], "fit": {"rms_mm": 1}})");
+  const BodyParams p = body_params_from_json(m, j, "params.json");
+  EXPECT_EQ(p.shape(1), 2.0);
+  EXPECT_EQ(p.joint_rotations[2], Vec3::Zero());
+}
+
 TEST(BodyJson, DegreesAndMissingKeysDefaultToZero) {
   const BodyModel m = test::tube_body_model(false);
   const auto j = nlohmann::json::parse(R"({"rotations_deg": {"tip": [0, 90, 0]}})");
@@ -50,6 +60,7 @@ TEST(BodyJson, ErrorsNameTheFileAndTheKey) {
   expect_error(R"({"shape": {"height": 3}})", "height");
   expect_error(R"({"model": "smpl"})", "smpl");
   expect_error(R"({"pose": {}})", "pose");
+  expect_error(R"({"joints": {}})", "joints");
   expect_error(R"([1, 2])", "object");
 }
 

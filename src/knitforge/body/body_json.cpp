@@ -74,8 +74,11 @@ BodyParams body_params_from_json(const BodyModel& model, const nlohmann::json& j
       }
     } else if (key == "translation_mm") {
       p.translation_mm = vec3(value, what, key);
-    } else if (key == "measurements_mm") {
-      // written for people; not an input
+    } else if (key == "measurements_mm" || key == "joints_mm" || key == "targets_mm" ||
+               key == "max_measurement_error_mm" || key == "newton_iterations" || key == "vertex_parts" ||
+               key == "fit") {
+      // Written by body make --params and body fit for people; not inputs,
+      // so that those files can be read back as a starting pose and shape.
     } else {
       throw InvalidInput(fmt::format("{}: unknown key '{}' (expected model, shape, rotations_rad or rotations_deg, "
                                      "translation_mm)",

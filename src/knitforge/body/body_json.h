@@ -13,7 +13,10 @@
 /// generated model). Rotations are axis-angle vectors per joint name;
 /// "rotations_deg" is accepted instead, in degrees. Joints and shape values
 /// not given are zero. "measurements_mm" is written for people and ignored
-/// on reading.
+/// on reading, as are the other keys that `body make --params` and `body
+/// fit` add ("joints_mm", "targets_mm", "max_measurement_error_mm",
+/// "newton_iterations", "vertex_parts", "fit"): their files read back as
+/// parameters.
 
 #include <string>
 

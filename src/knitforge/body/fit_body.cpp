@@ -10,6 +10,7 @@
 
 #include "knitforge/body/axis_angle.h"
 #include "knitforge/body/body_jacobian.h"
+#include "knitforge/body/body_measurements.h"
 #include "knitforge/body/one_plus_one_es.h"
 #include "knitforge/evaluate/surface_distance.h"
 #include "knitforge/geometry/cotan_laplacian.h"
@@ -343,6 +344,12 @@ BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, c
   runs.push_back(fit_body(model, scan, initial, one));
   runs.push_back(fit_body(model, scan, runs[0].params, both));
   runs.push_back(fit_body(model, scan, initial, both));
+  if (const std::optional<Eigen::VectorXd> shape = shape_from_scan_girths(model, scan)) {
+    BodyParams wide = initial;
+    wide.shape = *shape;
+    runs.push_back(fit_body(model, scan, place_on_scan(model, wide, scan), one));
+    runs.push_back(fit_body(model, scan, runs.back().params, both));
+  }
   size_t best = 0;
   double best_rms = 1e300;
   std::vector<double> run_rms;
@@ -357,10 +364,41 @@ BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, c
   BodyFitResult out = runs[best];
   out.initial_rms_mm = symmetric_rms_mm(model, scan, initial, options);
   out.rms_mm = best_rms;
-  out.iterations = runs[0].iterations + runs[1].iterations + runs[2].iterations;
+  out.iterations = 0;
+  for (const BodyFitResult& r : runs) out.iterations += r.iterations;
   out.chosen_run = static_cast<int>(best);
   out.run_rms_mm = run_rms;
   return out;
+}
+
+std::optional<Eigen::VectorXd> shape_from_scan_girths(const BodyModel& model, const TriMesh& scan) {
+  if (scan.vertices.empty() || model.landmarks.empty()) return std::nullopt;
+  try {
+    const ShapedBody rest = shape_body(model, Eigen::VectorXd::Zero(model.num_shapes()));
+    const BodyMeasurements base = measure_body(model, rest);
+    double zmin = 1e300;
+    for (const Vec3& p : rest.vertices) zmin = std::min(zmin, p.z());
+    const BoundingBox box = bounding_box(scan);
+    const double height = box.max.z() - box.min.z();
+    const double stature = base[static_cast<size_t>(Measurement::Stature)];
+    MeasurementTargets targets;
+    const auto clamp = [](double value, double of) { return std::clamp(value, 0.55 * of, 1.55 * of); };
+    targets.mm[static_cast<size_t>(Measurement::Stature)] = clamp(height, stature);
+    const std::array<std::pair<Measurement, const char*>, 3> girths = {
+        {{Measurement::ChestGirth, "chest"}, {Measurement::WaistGirth, "waist"}, {Measurement::HipGirth, "hip"}}};
+    for (const auto& [m, name] : girths) {
+      const auto it = model.landmarks.find(name);
+      if (it == model.landmarks.end()) return std::nullopt;
+      const double fraction = (rest.vertices[static_cast<size_t>(it->second)].z() - zmin) / stature;
+      const Vec3 at(0.5 * (box.min.x() + box.max.x()), 0.5 * (box.min.y() + box.max.y()), box.min.z() + fraction * height);
+      targets.mm[static_cast<size_t>(m)] = clamp(section_girth(scan, at, Vec3::UnitZ(), at), base[static_cast<size_t>(m)]);
+    }
+    return shape_from_measurements(model, targets).shape;
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  } catch (const SolverError&) {
+    return std::nullopt;
+  }
 }
 
 BodyParams place_on_scan(const BodyModel& model, const BodyParams& params, const TriMesh& scan) {

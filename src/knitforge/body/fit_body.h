@@ -30,6 +30,7 @@
 /// (O(log F)) and a dense 3V x N Jacobian (V = model vertices).
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "knitforge/body/body_model.h"
@@ -110,14 +111,31 @@ BodyFitResult fit_body(const BodyModel& model, const TriMesh& scan, const BodyPa
 double symmetric_rms_mm(const BodyModel& model, const TriMesh& scan, const BodyParams& params,
                         const BodyFitOptions& options = {});
 
-/// Three fits, the one with the lowest symmetric_rms_mm() returned (its
+/// Shape parameters whose stature, chest, waist and hip girths are the
+/// scan's own, measured as measure_body() does on the model but without
+/// landmarks: stature the scan's height (it stands upright, z up), each
+/// girth the convex-hull perimeter of the horizontal section loop round
+/// the scan's vertical centre line, at the landmark's height as a fraction
+/// of the stature on the model's rest body; each clamped to 0.55-1.55 x the
+/// template's value. A starting shape for a fit, not a measurement (arms
+/// touching the torso, a bent posture bias it). std::nullopt when the model
+/// cannot be driven by measurements (a loaded SMPL-format model) or a
+/// section misses the scan.
+std::optional<Eigen::VectorXd> shape_from_scan_girths(const BodyModel& model, const TriMesh& scan);
+
+/// Up to four fits, the one with the lowest symmetric_rms_mm() returned (its
 /// rms_mm and initial_rms_mm are then symmetric ones, iterations the sum):
 /// 0: eq. 5.1 from `initial`; 1: both directions from run 0's result;
-/// 2: both directions from `initial`. Each objective alone has cases where
-/// it settles in a wrong minimum from a far initial pose (eq. 5.1: a forearm
-/// whose hand has no weight twists about its axis; both: an arm stretches
-/// to the scan's hand), which the other run avoids. options.direction is
-/// ignored. About three times the cost of one fit. \throw as fit_body().
+/// 2: both directions from `initial`; when the model allows it, 3: eq. 5.1
+/// from `initial` with the shape of shape_from_scan_girths(), placed on the
+/// scan (place_on_scan()), and 4: both directions from run 3's result. Each objective alone has
+/// cases where it settles in a wrong minimum from a far initial pose (eq.
+/// 5.1: a forearm whose hand has no weight twists about its axis; both: an
+/// arm stretches to the scan's hand), which the other run avoids; a body
+/// much wider than the initial shape puts the initial arms inside its torso,
+/// where every run from `initial` keeps them (run 3 starts wide enough).
+/// options.direction is ignored. About five times the cost of one fit.
+/// \throw as fit_body().
 BodyFitResult fit_body_multistart(const BodyModel& model, const TriMesh& scan, const BodyParams& initial,
                                   const BodyFitOptions& options = {});
 
