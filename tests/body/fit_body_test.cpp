@@ -165,7 +165,8 @@ TEST(FitBody, MultistartFitsAFarPose) {
 // A plus-size body, relaxed: 160 cm, chest 110, waist 105 (1.3 x the
 // model's), hip 112 cm. From the default shape every run keeps the initial
 // arms inside the wide torso (rms about 5 mm, chest 113 cm); the runs that
-// start from the scan's own girths find it.
+// start from the scan's own girths find it. (The multistart itself is not
+// rerun here: five fits of this body take two minutes under ASan.)
 TEST(FitBody, AWideBodyIsFoundFromTheScansGirths) {
   const BodyModel& m = generated_body();
   MeasurementTargets t;
@@ -189,13 +190,20 @@ TEST(FitBody, AWideBodyIsFoundFromTheScansGirths) {
     EXPECT_NEAR(got[static_cast<size_t>(q)], want[static_cast<size_t>(q)], 80.0) << measurement_info(q).key;
   }
 
-  const BodyFitResult best = fit_body_multistart(m, scan, pose_preset(m, "a-pose"), {});
-  ASSERT_EQ(best.run_rms_mm.size(), 5u);
-  std::printf("wide body: runs %.2f %.2f %.2f %.2f %.2f mm, chose %d\n", best.run_rms_mm[0], best.run_rms_mm[1],
-              best.run_rms_mm[2], best.run_rms_mm[3], best.run_rms_mm[4], best.chosen_run);
-  EXPECT_GE(best.chosen_run, 3);
-  EXPECT_LT(best.rms_mm, 1.5);  // 2 mm uniform noise
-  expect_measurements(m, best.params, want, 10.0);
+  // Runs 3 and 4 of fit_body_multistart() (whose choice among its runs
+  // MultistartFitsAFarPose tests; the whole multistart chose run 4 here,
+  // against 12.6, 8.4, 5.0 mm for runs 0-2: 1.12 mm, measured 2026-12-07).
+  BodyFitOptions one, both;
+  one.direction = BodyFitDirection::TemplateToScan;
+  both.direction = BodyFitDirection::Both;
+  BodyParams wide = pose_preset(m, "a-pose");
+  wide.shape = *start;
+  const BodyFitResult first = fit_body(m, scan, place_on_scan(m, wide, scan), one);
+  const BodyFitResult fit = fit_body(m, scan, first.params, both);
+  const double rms = symmetric_rms_mm(m, scan, fit.params);
+  std::printf("wide body from its girths: symmetric rms %.2f mm\n", rms);
+  EXPECT_LT(rms, 1.5);  // 2 mm uniform noise
+  expect_measurements(m, fit.params, want, 10.0);
 }
 
 TEST(FitBody, AModelWithoutMeasurementShapesHasNoGirthStart) {
