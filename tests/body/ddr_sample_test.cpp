@@ -124,6 +124,24 @@ TEST(DdrSample, ThePelvisLiesBetweenFrontAndBackAndHeatmapsPeakAtKeypoints) {
   }
 }
 
+TEST(DdrSample, AKeypointFarOutsideThePictureLeavesItsHeatmapEmpty) {
+  KeypointPixels px = zero_keypoint_pixels();
+  px[0] = Vec2(1e12, 5.0);   // beyond any int
+  px[1] = Vec2(-40.0, 8.0);  // its Gaussian misses the 16-pixel picture
+  px[2] = Vec2(8.0, 8.0);
+  std::array<bool, kNumBodyKeypoints> present{};
+  present[0] = present[1] = present[2] = true;
+  const std::vector<float> maps = keypoint_heatmaps(px, present, 16, 1.5);
+  const auto sum = [&](size_t k) {
+    double s = 0.0;
+    for (size_t i = 0; i < 256; ++i) s += maps[k * 256 + i];
+    return s;
+  };
+  EXPECT_EQ(sum(0), 0.0);
+  EXPECT_EQ(sum(1), 0.0);
+  EXPECT_FLOAT_EQ(maps[2 * 256 + 8 * 16 + 8], 1.0f);
+}
+
 TEST(DdrSample, SamplesAreDeterministicAndDiffer) {
   const BodyModel& model = coarse_body();
   const BodyKeypointRig rig = body_keypoint_rig(model);

@@ -25,6 +25,15 @@ namespace knitforge {
 
 inline constexpr int kNumBodyKeypoints = 18;
 
+/// Pixel positions of the 18 keypoints (Eigen leaves a Vec2 uninitialised,
+/// so the arrays below start from this: all (0, 0)).
+using KeypointPixels = std::array<Vec2, kNumBodyKeypoints>;
+inline KeypointPixels zero_keypoint_pixels() {
+  KeypointPixels px;
+  px.fill(Vec2::Zero());
+  return px;
+}
+
 /// OpenPose COCO-18 names in order: "nose", "neck", "right_shoulder", ...
 const std::array<std::string, kNumBodyKeypoints>& body_keypoint_names();
 

@@ -108,6 +108,9 @@ std::vector<float> keypoint_heatmaps(const std::array<Vec2, kNumBodyKeypoints>& 
   for (size_t k = 0; k < kNumBodyKeypoints; ++k) {
     if (!present[k] || !keypoints_px[k].allFinite()) continue;
     const Vec2 q = keypoints_px[k];
+    // A keypoint whose Gaussian misses the image leaves its map empty (and
+    // its coordinates may not fit an int).
+    if (q.x() < -reach || q.y() < -reach || q.x() > size + reach || q.y() > size + reach) continue;
     const int u0 = std::max(0, static_cast<int>(std::floor(q.x())) - reach), u1 = std::min(size - 1, static_cast<int>(std::ceil(q.x())) + reach);
     const int v0 = std::max(0, static_cast<int>(std::floor(q.y())) - reach), v1 = std::min(size - 1, static_cast<int>(std::ceil(q.y())) + reach);
     for (int v = v0; v <= v1; ++v)

@@ -66,7 +66,7 @@ struct DdrSample {
   std::vector<float> heatmaps;     ///< 18 x s x s, in [0, 1]
   std::vector<float> ddr;          ///< 2 x s x s: I_min, I_max normalised; background 0
   std::vector<uint8_t> foreground; ///< s x s: 1 where the body is seen
-  std::array<Vec2, kNumBodyKeypoints> keypoints_px;   ///< (u, v) pixels
+  KeypointPixels keypoints_px = zero_keypoint_pixels();  ///< (u, v) pixels
   std::array<Vec3, kNumBodyKeypoints> keypoints_mm;   ///< camera frame
   Vec3 pelvis_mm = Vec3::Zero();                      ///< camera frame
   DepthCamera camera;

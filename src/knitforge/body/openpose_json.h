@@ -22,7 +22,7 @@ namespace knitforge {
 
 /// One person's keypoints (COCO-18 order).
 struct PersonKeypoints {
-  std::array<Vec2, kNumBodyKeypoints> px;
+  KeypointPixels px = zero_keypoint_pixels();  ///< (0, 0) where not present
   std::array<bool, kNumBodyKeypoints> present{};
   int people_in_file = 0;  ///< how many people the file lists
 };

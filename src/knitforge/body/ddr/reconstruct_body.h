@@ -31,7 +31,7 @@ namespace knitforge {
 /// A picture at the model's size and its keypoints.
 struct ReconstructInput {
   std::vector<float> rgb;                             ///< 3 x s x s in [0, 1]
-  std::array<Vec2, kNumBodyKeypoints> keypoints_px;   ///< (u, v) in the s x s picture
+  KeypointPixels keypoints_px = zero_keypoint_pixels();  ///< (u, v) in the s x s picture
   std::array<bool, kNumBodyKeypoints> present{};      ///< false: not detected
 };
 
