@@ -1,7 +1,12 @@
 #include "knitforge/geometry/sparse_solver.h"
 
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <iterator>
+#include <thread>
 #include <vector>
 
 #include "knitforge/util/errors.h"
@@ -44,6 +49,52 @@ TEST(SparseSolver, SolvesSpdSystems) {
   EXPECT_LE((X - X_true).norm(), 1e-9 * X_true.norm());
   // Reuse: a second right-hand side against the same factor.
   EXPECT_LE((s.solve(b) - x_true).norm(), 1e-9 * x_true.norm());
+}
+
+// serial_cholmod_calls(): CHOLMOD's calls run with OpenMP's parallel regions
+// off, and the value the process had is back afterwards (a process-wide
+// change would serialise LibTorch's OpenMP work in knitforge-ddr); a
+// supernodal factor (>= 10k unknowns) still solves exactly.
+TEST(SparseSolver, CholmodCallsRunSerialAndRestoreOpenMp) {
+  if (std::getenv("OMP_MAX_ACTIVE_LEVELS") != nullptr) GTEST_SKIP() << "OMP_MAX_ACTIVE_LEVELS is set";
+  // Debian's CHOLMOD is built with OpenMP, so the runtime is there.
+  ASSERT_TRUE(serial_cholmod_calls());
+  using SetLevels = void (*)(int);
+  const auto set = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  ASSERT_NE(set, nullptr);
+  const int before = openmp_max_active_levels();
+  set(3);
+  const SparseMatrix A = shifted_laplacian(12000, 0.01);
+  const Eigen::VectorXd x_true = Eigen::VectorXd::LinSpaced(12000, -1, 3);
+  SparseSolver s;
+  s.analyze(A);
+  s.refactor(A);
+  EXPECT_LE((s.solve(A * x_true) - x_true).norm(), 1e-9 * x_true.norm());
+  EXPECT_EQ(openmp_max_active_levels(), 3);
+  SparseSolver t(A);
+  Eigen::MatrixXd B(12000, 2);
+  B << A * x_true, A * x_true;
+  EXPECT_LE((t.solve_columns(B).col(1) - x_true).norm(), 1e-9 * x_true.norm());
+  EXPECT_EQ(openmp_max_active_levels(), 3);
+  EXPECT_THROW(SparseSolver{shifted_laplacian(50, -1.0)}, SolverError);  // a failed factor restores too
+  EXPECT_EQ(openmp_max_active_levels(), 3);
+  // Inside the calls CHOLMOD's parallel regions run on the calling thread
+  // alone: the OpenMP runtime starts no workers for it. (A new thread has
+  // a pool of its own, whose workers would stay listed until it ends.)
+  std::thread fresh([] {
+    const auto threads = [] {
+      return std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                           std::filesystem::directory_iterator{});
+    };
+    const SparseMatrix big = shifted_laplacian(60000, 0.01);
+    const auto threads_before = threads();
+    SparseSolver u(big);
+    EXPECT_LE((u.solve(big * Eigen::VectorXd::Ones(60000)) - Eigen::VectorXd::Ones(60000)).norm(), 1e-7);
+    EXPECT_EQ(threads(), threads_before);
+  });
+  fresh.join();
+  EXPECT_EQ(openmp_max_active_levels(), 3);
+  set(before);
 }
 
 TEST(SparseSolver, IndefiniteMatrixThrowsSolverError) {

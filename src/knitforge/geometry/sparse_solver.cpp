@@ -1,7 +1,10 @@
 #include "knitforge/geometry/sparse_solver.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
@@ -10,6 +13,62 @@
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
+
+namespace {
+
+// CHOLMOD's OpenMP regions made serial while a CHOLMOD call runs (see
+// serial_cholmod_calls() in the header). The OpenMP runtime is looked up at
+// run time: CHOLMOD brings it in when it was built with OpenMP; without it,
+// or when the user sets OMP_MAX_ACTIVE_LEVELS, nothing is changed.
+struct OpenMpLevels {
+  using Get = int (*)();
+  using Set = void (*)(int);
+  Get get = nullptr;
+  Set set = nullptr;
+  OpenMpLevels() {
+    if (std::getenv("OMP_MAX_ACTIVE_LEVELS") != nullptr) return;  // the user's choice stands
+    get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+    set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+    if (get == nullptr || set == nullptr) get = nullptr, set = nullptr;
+  }
+};
+
+const OpenMpLevels& openmp_levels() {
+  static const OpenMpLevels levels;
+  return levels;
+}
+
+/// Scope of one CHOLMOD call: max-active-levels is 0 inside and back to its
+/// value afterwards. The value belongs to the calling thread (OpenMP 5's
+/// per-data-environment ICV, as libgomp keeps it), so other threads' OpenMP
+/// work is not touched.
+class SerialCholmod {
+ public:
+  SerialCholmod() {
+    const OpenMpLevels& l = openmp_levels();
+    if (l.set == nullptr) return;
+    saved_ = l.get();
+    l.set(0);
+  }
+  ~SerialCholmod() {
+    const OpenMpLevels& l = openmp_levels();
+    if (l.set != nullptr) l.set(saved_);
+  }
+  SerialCholmod(const SerialCholmod&) = delete;
+  SerialCholmod& operator=(const SerialCholmod&) = delete;
+
+ private:
+  int saved_ = 0;
+};
+
+}  // namespace
+
+bool serial_cholmod_calls() { return openmp_levels().set != nullptr; }
+
+int openmp_max_active_levels() {
+  const OpenMpLevels& l = openmp_levels();
+  return l.get != nullptr ? l.get() : -1;
+}
 
 struct SparseSolver::Impl {
   // CHOLMOD's LL^T, simplicial below kSupernodalFrom unknowns and supernodal
@@ -81,7 +140,10 @@ void SparseSolver::analyze(const SparseMatrix& pattern) {
   check_square(pattern);
   const SparseMatrix L = lower_part(pattern);
   impl_->use_mode_for(L.rows());
-  impl_->llt.analyzePattern(L);
+  {
+    SerialCholmod serial;
+    impl_->llt.analyzePattern(L);
+  }
   impl_->outer.assign(L.outerIndexPtr(), L.outerIndexPtr() + L.outerSize() + 1);
   impl_->inner.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
   impl_->n = static_cast<int>(pattern.rows());
@@ -104,7 +166,10 @@ void refactor_analyzed(Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>& 
       static_cast<size_t>(L.nonZeros()) != inner.size() || !std::equal(inner.begin(), inner.end(), L.innerIndexPtr())) {
     throw InvalidInput("sparse solver: refactor() of a matrix whose pattern differs from the analyzed one");
   }
-  llt.factorize(L);
+  {
+    SerialCholmod serial;
+    llt.factorize(L);
+  }
   if (llt.info() != Eigen::Success) {
     throw SolverError(fmt::format("sparse solver: the {} x {} matrix is not positive definite (CHOLMOD status {})",
                                   A.rows(), A.cols(), llt.cholmod().status));
@@ -122,7 +187,10 @@ void SparseSolver::factor(const SparseMatrix& A) {
   check_square(A);
   check_finite(A);
   impl_->use_mode_for(A.rows());
-  impl_->llt.compute(A);  // reads the lower triangle only
+  {
+    SerialCholmod serial;
+    impl_->llt.compute(A);  // reads the lower triangle only
+  }
   impl_->nnz = A.nonZeros();
   if (impl_->llt.info() != Eigen::Success) {
     const auto& c = impl_->llt.cholmod();
@@ -147,7 +215,10 @@ void SparseSolver::refactor(const SparseMatrix& A) {
   }
   impl_->ok = false;
   check_finite(A);
-  impl_->llt.factorize(A);
+  {
+    SerialCholmod serial;
+    impl_->llt.factorize(A);
+  }
   if (impl_->llt.info() != Eigen::Success) {
     throw SolverError(fmt::format(
         "sparse solver: the {} x {} matrix is not positive definite (CHOLMOD status {})", A.rows(), A.cols(),
@@ -174,7 +245,11 @@ Eigen::VectorXd SparseSolver::solve(const Eigen::VectorXd& b) const {
   if (b.size() != impl_->n) {
     throw InvalidInput(fmt::format("sparse solver: right-hand side has {} entries, expected {}", b.size(), impl_->n));
   }
-  Eigen::VectorXd x = impl_->llt.solve(b);
+  Eigen::VectorXd x;
+  {
+    SerialCholmod serial;
+    x = impl_->llt.solve(b);
+  }
   if (impl_->llt.info() != Eigen::Success) throw SolverError("sparse solver: CHOLMOD solve failed");
   check_solution(x);
   return x;
@@ -185,7 +260,11 @@ Eigen::MatrixXd SparseSolver::solve_columns(const Eigen::MatrixXd& B) const {
   if (B.rows() != impl_->n) {
     throw InvalidInput(fmt::format("sparse solver: right-hand side has {} rows, expected {}", B.rows(), impl_->n));
   }
-  Eigen::MatrixXd X = impl_->llt.solve(B);
+  Eigen::MatrixXd X;
+  {
+    SerialCholmod serial;
+    X = impl_->llt.solve(B);
+  }
   if (impl_->llt.info() != Eigen::Success) throw SolverError("sparse solver: CHOLMOD solve failed");
   check_solution(X);
   return X;

@@ -78,6 +78,24 @@ class SparseSolver {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Whether CHOLMOD's calls run with OpenMP's parallel regions off. Debian's
+/// CHOLMOD runs parts of the supernodal factor and solves in parallel
+/// regions of a fixed 4 threads, whose start and join cost more than they
+/// give on a small machine (on the free short-row hemisphere, 11k unknowns,
+/// 2 cores, about a quarter of the process's time went to waking and
+/// parking those threads: docs/benchmarks.md, 2026-12-07). So every
+/// SparseSolver call into CHOLMOD sets the calling thread's OpenMP
+/// max-active-levels to 0 for its duration and restores the previous value
+/// afterwards; OpenMP work outside these calls (LibTorch in knitforge-ddr)
+/// keeps its threads.
+/// The results do not change (the parallel loops are independent). False
+/// when the process has no OpenMP runtime, or the environment sets
+/// OMP_MAX_ACTIVE_LEVELS (then that stands for CHOLMOD too).
+bool serial_cholmod_calls();
+/// The calling thread's OpenMP max-active-levels now (-1 without an OpenMP
+/// runtime); for tests.
+int openmp_max_active_levels();
+
 /// One-shot: factors A and solves A x = b. Throws as SparseSolver.
 Eigen::VectorXd solve_spd(const SparseMatrix& A, const Eigen::VectorXd& b);
 
