@@ -46,6 +46,30 @@ using Dual = Eigen::AutoDiffScalar<Eigen::Matrix<double, 12, 1>>;
 ElementEnergy<4> hinge_element_energy(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                                       const BendingHinge& hinge, Derivatives what, PsdProjection projection) {
   ElementEnergy<4> out;
+  if (what == Derivatives::Gradient) {
+    // Value and gradient with each cross product formed once: the same
+    // expressions as dihedral_angle() and angle_gradient(), so the same bits
+    // as the general path below (the L-BFGS phase's line search is made of
+    // these evaluations).
+    const Vec3 e = x1 - x0, d2 = x2 - x0, d3 = x3 - x0;
+    const Vec3 na = e.cross(d2), nb = d3.cross(e);
+    const double e2 = e.squaredNorm();
+    const double en = std::sqrt(e2);
+    const double theta = en > 0 ? std::atan2(na.cross(nb).dot(e) / en, na.dot(nb)) : 0.0;
+    const double k = hinge.stiffness;
+    out.value = k * theta * theta;
+    const double na2 = na.squaredNorm(), nb2 = nb.squaredNorm();
+    if (!(e2 > 0) || std::sqrt(na2) <= 1e-9 * e2 || std::sqrt(nb2) <= 1e-9 * e2) return out;
+    const Vec3 g2 = -na * (en / na2);
+    const Vec3 g3 = -nb * (en / nb2);
+    const double ta = d2.dot(e) / e2, tb = d3.dot(e) / e2;
+    const double c = 2 * k * theta;
+    out.gradient.segment<3>(0) = c * (-(1.0 - ta) * g2 - (1.0 - tb) * g3);
+    out.gradient.segment<3>(3) = c * (-ta * g2 - tb * g3);
+    out.gradient.segment<3>(6) = c * g2;
+    out.gradient.segment<3>(9) = c * g3;
+    return out;
+  }
   const double theta = dihedral_angle(x0, x1, x2, x3);
   const double k = hinge.stiffness;
   out.value = k * theta * theta;
