@@ -167,6 +167,7 @@ void add_predict_command(CLI::App& app, Action& action) {
                      {"course_strain", r.stitch_course_strain},
                      {"wale_strain", r.stitch_wale_strain}};
       if (!target_path.empty()) {
+        const Timer shape_timer;
         const TriMesh target = read_mesh(target_path);
         const SurfaceBvh bvh(target);
         const ShapeError se = shape_error_to_target(r.predicted.vertices, designed, target, bvh, o->on.empty());
@@ -178,6 +179,9 @@ void add_predict_command(CLI::App& app, Action& action) {
                             {"relative_rms", se.relative_rms_error},
                             {"relative_max", se.relative_max_error},
                             {"designed_rms_mm", se.designed_rms_error},
+                            {"icp_rounds", se.icp_iterations},
+                            {"icp_coarse_rounds", se.icp_coarse_iterations},
+                            {"seconds", shape_timer.seconds()},
                             {"converged", r.solve.converged}};
         ply.scalars.push_back({"shape_error", se.stitch_error});
         if (o->on.empty()) {

@@ -61,6 +61,38 @@ TEST(SurfaceDistance, MatchesBruteForce) {
   for (size_t i = 0; i < pts.size(); ++i) EXPECT_EQ(d[i], cp[i].distance);
 }
 
+// A hint face (ICP's last match) only prunes: the answer is the same face,
+// point and distance as without one, for good, bad, tied and invalid hints.
+TEST(SurfaceDistance, HintGivesTheSameAnswer) {
+  const TriMesh m = random_sheet(30, 3);
+  const SurfaceBvh bvh(m);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-5, 35), z(-6, 6);
+  std::uniform_int_distribution<int> face(0, m.num_faces() - 1);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p(u(rng), u(rng), z(rng));
+    const ClosestPoint plain = bvh.closest_point(p);
+    for (int hint : {plain.face, face(rng), face(rng), -1, m.num_faces(), plain.face ^ 1}) {
+      const ClosestPoint hinted = bvh.closest_point(p, hint);
+      EXPECT_EQ(hinted.face, plain.face) << k << " hint " << hint;
+      EXPECT_EQ(hinted.distance, plain.distance);
+      EXPECT_EQ(hinted.point, plain.point);
+      EXPECT_EQ(hinted.normal, plain.normal);
+    }
+  }
+  // Exact ties: above the shared diagonal of a flat square, both triangles
+  // are closest; the smaller face index wins, whichever one is the hint.
+  TriMesh sq;
+  sq.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+  sq.faces = {{0, 1, 2}, {0, 2, 3}};
+  const SurfaceBvh tie(sq);
+  for (int hint : {-1, 0, 1}) {
+    const ClosestPoint c = tie.closest_point(Vec3(0.5, 0.5, 2.0), hint);
+    EXPECT_EQ(c.face, 0) << "hint " << hint;
+    EXPECT_EQ(c.distance, 2.0);
+  }
+}
+
 TEST(SurfaceDistance, SingleTriangleAndDegenerateOnly) {
   TriMesh m;
   m.vertices = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(0, 4, 0)};

@@ -52,6 +52,8 @@ SurfaceBvh::SurfaceBvh(const TriMesh& mesh) {
   }
   nodes_.reserve(2 * static_cast<size_t>(nf) / kLeafSize + 2);
   build(0, nf, centroids);
+  slot_of_face_.resize(nf);
+  for (int i = 0; i < nf; ++i) slot_of_face_[face_ids_[i]] = i;
   for (int i = 0; i < nf; ++i) {
     const auto& t = mesh.faces[face_ids_[i]];
     tri_[i] = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
@@ -106,10 +108,18 @@ int SurfaceBvh::build(int first, int count, std::vector<Vec3>& centroids) {
   return id;
 }
 
-ClosestPoint SurfaceBvh::closest_point(const Vec3& p) const {
+ClosestPoint SurfaceBvh::closest_point(const Vec3& p, int hint_face) const {
   if (!p.allFinite()) throw InvalidInput("surface distance: the query point is not finite");
   ClosestPoint best;
   double best2 = std::numeric_limits<double>::infinity();
+  // Boxes farther than the hint face are pruned from the start; the closest
+  // point is at most that far, so every face that could be (or tie with)
+  // it is still visited, in the same order: the same result.
+  double bound2 = std::numeric_limits<double>::infinity();
+  if (hint_face >= 0 && hint_face < num_faces()) {
+    const auto& t = tri_[slot_of_face_[hint_face]];
+    bound2 = (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).squaredNorm();
+  }
   int best_slot_face = std::numeric_limits<int>::max();
   int best_slot = 0;
   int stack[128];
@@ -117,7 +127,7 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p) const {
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
-    if (box_distance2(p, node.lo, node.hi) > best2) continue;
+    if (box_distance2(p, node.lo, node.hi) > std::min(best2, bound2)) continue;
     if (node.left < 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const Vec3 c = closest_point_on_triangle(p, tri_[i][0], tri_[i][1], tri_[i][2]);
@@ -135,12 +145,13 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p) const {
     const double dl = box_distance2(p, nodes_[node.left].lo, nodes_[node.left].hi);
     const double dr = box_distance2(p, nodes_[node.right].lo, nodes_[node.right].hi);
     // Push the farther child first so the nearer one is visited first.
+    const double limit = std::min(best2, bound2);
     if (dl <= dr) {
-      if (dr <= best2) stack[top++] = node.right;
-      if (dl <= best2) stack[top++] = node.left;
+      if (dr <= limit) stack[top++] = node.right;
+      if (dl <= limit) stack[top++] = node.left;
     } else {
-      if (dl <= best2) stack[top++] = node.left;
-      if (dr <= best2) stack[top++] = node.right;
+      if (dl <= limit) stack[top++] = node.left;
+      if (dr <= limit) stack[top++] = node.right;
     }
   }
   best.distance = std::sqrt(best2);

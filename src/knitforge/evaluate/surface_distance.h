@@ -43,9 +43,13 @@ class SurfaceBvh {
   explicit SurfaceBvh(const TriMesh& mesh);
 
   /// Closest point of the surface to p. Degenerate faces count as the
-  /// segments / points they collapse to.
+  /// segments / points they collapse to. `hint_face` (optional; -1 or out
+  /// of range: none) is a face likely near the answer, e.g. the one a
+  /// nearby earlier query found (ICP's last round): its distance prunes the
+  /// search from the start, so a good hint makes the query cheaper; the
+  /// result is the same with any hint or none.
   /// \throw InvalidInput when p is not finite.
-  ClosestPoint closest_point(const Vec3& p) const;
+  ClosestPoint closest_point(const Vec3& p, int hint_face = -1) const;
 
   int num_faces() const { return static_cast<int>(face_ids_.size()); }
 
@@ -60,6 +64,7 @@ class SurfaceBvh {
   int build(int first, int count, std::vector<Vec3>& centroids);
   std::vector<Node> nodes_;
   std::vector<int> face_ids_;             ///< original face index per slot
+  std::vector<int> slot_of_face_;         ///< slot per original face index
   std::vector<std::array<Vec3, 3>> tri_;  ///< triangle corners per slot
   std::vector<Vec3> normal_;              ///< unit face normal per slot
 };
