@@ -37,7 +37,7 @@ nlohmann::json design_prediction(const DesignPredictOptions& options, const std:
     summary = fmt::format(
         "predicted shape skipped: {} stitches is above the default limit of {} (it would take about {:.0f} s); "
         "--predict runs it, or `knitforge predict {}`",
-        n, kDesignPredictMaxStitches, 0.002 * n, outdir);
+        n, kDesignPredictMaxStitches, 0.0015 * n, outdir);
     return nullptr;
   }
   const Timer t;
