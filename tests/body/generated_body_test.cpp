@@ -282,7 +282,9 @@ TEST(GeneratedBody, IsDeterministicAndRejectsBadOptions) {
   ASSERT_EQ(a.num_vertices(), b.num_vertices());
   EXPECT_EQ(a.template_vertices, b.template_vertices);
   EXPECT_EQ(a.faces, b.faces);
-  EXPECT_LT(a.num_vertices(), model().num_vertices());
+  // Fewer vertices than the default model, which has more than 5000
+  // (IsOneClosedGenusZeroSurfaceOfHumanSize; not built here: 5 s under ASan).
+  EXPECT_LT(a.num_vertices(), 5000);
   o.edge_length = 5.0;
   EXPECT_THROW(make_generated_body(o), InvalidInput);
   o.edge_length = 20.0;

@@ -108,12 +108,20 @@ double smoothstep(double e0, double e1, double x) {
   return t * t * (3.0 - 2.0 * t);
 }
 
+// The primitives' eval() are written out in scalars, in the operations and
+// order of the Eigen expressions they replace (same bits; an Eigen sum of
+// three is (x0 + x1) + x2): the grid and the projections evaluate them
+// millions of times, and unoptimised Eigen temporaries made the built-in
+// body take 6.5 s under the sanitizers, most of it here.
+double norm3(double x, double y, double z) { return std::sqrt((x * x + y * y) + z * z); }
+
 struct Ellipsoid {
   Vec3 c, r;
   double eval(const Vec3& p) const {
-    const Vec3 q = p - c;
-    const double k0 = q.cwiseQuotient(r).norm();
-    const double k1 = q.cwiseQuotient(r.cwiseProduct(r)).norm();
+    const double qx = p.x() - c.x(), qy = p.y() - c.y(), qz = p.z() - c.z();
+    const double rx = r.x(), ry = r.y(), rz = r.z();
+    const double k0 = norm3(qx / rx, qy / ry, qz / rz);
+    const double k1 = norm3(qx / (rx * rx), qy / (ry * ry), qz / (rz * rz));
     if (k1 <= 1e-12) return -r.minCoeff();
     return k0 * (k0 - 1.0) / k1;
   }
@@ -129,9 +137,10 @@ struct TaperedCapsule {
     return rm + (r1 - rm) * smoothstep(tm, 1.0, t);
   }
   double eval(const Vec3& p) const {
-    const Vec3 ab = b - a;
-    const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    return (p - (a + t * ab)).norm() - radius(t);
+    const double abx = b.x() - a.x(), aby = b.y() - a.y(), abz = b.z() - a.z();
+    const double px = p.x() - a.x(), py = p.y() - a.y(), pz = p.z() - a.z();
+    const double t = std::clamp(((px * abx + py * aby) + pz * abz) / ((abx * abx + aby * aby) + abz * abz), 0.0, 1.0);
+    return norm3(p.x() - (a.x() + t * abx), p.y() - (a.y() + t * aby), p.z() - (a.z() + t * abz)) - radius(t);
   }
 };
 

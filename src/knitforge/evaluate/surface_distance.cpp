@@ -17,9 +17,15 @@ namespace {
 constexpr int kLeafSize = 4;
 
 // Squared distance from p to the box [lo, hi] (0 inside).
+// In scalars (the same bits as the Eigen expression, (lo - p).cwiseMax(p -
+// hi).cwiseMax(0).squaredNorm()): every closest-point query tests many
+// boxes, and the Eigen temporaries dominated body fitting under the
+// sanitizers.
 double box_distance2(const Vec3& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  const Eigen::Vector3d d = (lo - p).cwiseMax(p - hi).cwiseMax(0.0);
-  return d.squaredNorm();
+  const double dx = std::max(std::max(lo.x() - p.x(), p.x() - hi.x()), 0.0);
+  const double dy = std::max(std::max(lo.y() - p.y(), p.y() - hi.y()), 0.0);
+  const double dz = std::max(std::max(lo.z() - p.z(), p.z() - hi.z()), 0.0);
+  return (dx * dx + dy * dy) + dz * dz;
 }
 
 }  // namespace

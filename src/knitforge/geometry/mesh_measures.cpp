@@ -111,6 +111,28 @@ Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return a + t * ab;
 }
 
+namespace {
+
+// Three doubles with the arithmetic closest_triangle_point() needs, in the
+// operations and order of the Eigen expressions it replaced (same bits; an
+// Eigen sum of three is (x0 + x1) + x2). Closest points are queried millions
+// of times (body fitting, surface distances), and unoptimised Eigen
+// temporaries were most of their time under the sanitizers.
+struct D3 {
+  double x, y, z;
+  explicit D3(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
+  D3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+  D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  D3 operator*(double s) const { return {x * s, y * s, z * s}; }
+  double dot(const D3& o) const { return (x * o.x + y * o.y) + z * o.z; }
+  double squared_norm() const { return dot(*this); }
+  D3 cross(const D3& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
+  Vec3 vec() const { return {x, y, z}; }
+};
+
+}  // namespace
+
 // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the
 // triangle), with a fallback to the edges for degenerate triangles.
 TrianglePoint closest_triangle_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -127,9 +149,11 @@ TrianglePoint closest_triangle_point(const Vec3& p, const Vec3& a, const Vec3& b
     t.bary[(k + 1) % 3] = s;
     return t;
   };
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double n2 = ab.cross(ac).squaredNorm();
-  if (!(n2 > 1e-24 * std::max(ab.squaredNorm(), ac.squaredNorm()) * std::max(ab.squaredNorm(), ac.squaredNorm()))) {
+  const D3 P(p), A(a), B(b), C(c);
+  const D3 ab = B - A, ac = C - A, ap = P - A;
+  const double n2 = ab.cross(ac).squared_norm();
+  const double ab2 = ab.squared_norm(), ac2 = ac.squared_norm();
+  if (!(n2 > 1e-24 * std::max(ab2, ac2) * std::max(ab2, ac2))) {
     const Vec3* corner[3] = {&a, &b, &c};
     TrianglePoint best;
     double best2 = INFINITY;
@@ -147,31 +171,31 @@ TrianglePoint closest_triangle_point(const Vec3& p, const Vec3& a, const Vec3& b
   }
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0.0 && d2 <= 0.0) return at_vertex(a, 0);
-  const Vec3 bp = p - b;
+  const D3 bp = P - B;
   const double d3 = ab.dot(bp), d4 = ac.dot(bp);
   if (d3 >= 0.0 && d4 <= d3) return at_vertex(b, 1);
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
     const double s = d1 / (d1 - d3);
-    return on_edge(a + s * ab, 0, s);
+    return on_edge((A + ab * s).vec(), 0, s);
   }
-  const Vec3 cp = p - c;
+  const D3 cp = P - C;
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d6 >= 0.0 && d5 <= d6) return at_vertex(c, 2);
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
     const double s = d2 / (d2 - d6);
-    return on_edge(a + s * ac, 2, 1.0 - s);
+    return on_edge((A + ac * s).vec(), 2, 1.0 - s);
   }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
     const double s = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return on_edge(b + s * (c - b), 1, s);
+    return on_edge((B + (C - B) * s).vec(), 1, s);
   }
   const double denom = 1.0 / (va + vb + vc);
   TrianglePoint t;
   t.bary = Vec3(1.0 - (vb + vc) * denom, vb * denom, vc * denom);
-  t.point = a + ab * (vb * denom) + ac * (vc * denom);
+  t.point = ((A + ab * (vb * denom)) + ac * (vc * denom)).vec();
   t.region = R::Face;
   return t;
 }
