@@ -146,15 +146,12 @@ int run_make(const MakeOptions& o) {
   }
   // Another --edge builds only its own model (not the default one first).
   std::unique_ptr<BodyModel> own;
-  const BodyModel* model = nullptr;
   if (o.edge != GeneratedBodyOptions{}.edge_length) {
     GeneratedBodyOptions go;
     go.edge_length = o.edge;
     own = std::make_unique<BodyModel>(make_generated_body(go));
-    model = own.get();
-  } else {
-    model = &generated_body();
   }
+  const BodyModel* model = own ? own.get() : &generated_body();
   const BodyParams pose = load_pose(*model, o.pose);
   const MadeBody body = make_body(*model, targets, pose);
   write_made_body(o, body.mesh);

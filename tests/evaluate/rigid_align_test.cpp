@@ -174,40 +174,5 @@ TEST(AlignToSurface, StartsFromTheInitialTransformAndNeverGetsWorse) {
   EXPECT_THROW(align_to_surface(std::vector<Vec3>{}, surface), InvalidInput);
 }
 
-// The coarse pass (IcpOptions::coarse_points) finds the same alignment as
-// ICP over every point, with fewer rounds over every point, also for points
-// that do not lie on the surface (a predicted shape against its target).
-TEST(AlignToSurface, CoarsePassEndsWhereTheFullIcpEnds) {
-  const TriMesh surface = bumpy_surface(80);
-  std::mt19937 rng(7);
-  std::normal_distribution<double> noise(0.0, 1.5);
-  std::vector<Vec3> pts;
-  const Mat3 R = rotation(0.06, Vec3(1, -2, 0.5));
-  const Vec3 t(1.5, -1.0, 2.0);
-  for (const Vec3& v : surface.vertices) {
-    if (v.x() > 6 && v.x() < 54 && v.y() > 6 && v.y() < 54) pts.push_back(R * (v + Vec3(0, 0, noise(rng))) + t);
-  }
-  ASSERT_GT(pts.size(), 3000u);
-  IcpOptions full;
-  full.coarse_points = 0;
-  IcpOptions coarse;
-  coarse.coarse_points = 500;
-  const IcpResult a = align_to_surface(pts, surface, RigidTransform{}, full);
-  const IcpResult b = align_to_surface(pts, surface, RigidTransform{}, coarse);
-  EXPECT_TRUE(a.converged);
-  EXPECT_TRUE(b.converged);
-  EXPECT_EQ(a.coarse_iterations, 0);
-  EXPECT_GT(b.coarse_iterations, 0);
-  EXPECT_LE(b.iterations, a.iterations);
-  EXPECT_EQ(a.initial_rms, b.initial_rms);
-  EXPECT_NEAR(b.rms, a.rms, 1e-4 * a.rms);
-  EXPECT_LT((b.transform.rotation - a.transform.rotation).norm(), 1e-3);
-  EXPECT_LT((b.transform.translation - a.transform.translation).norm(), 0.02);
-  // It undid the motion up to the noise (1.5 mm on a 48 mm patch: 0.007).
-  EXPECT_LT((b.transform.after(RigidTransform{R, t}).rotation - Mat3::Identity()).norm(), 0.01);
-  coarse.coarse_points = -1;
-  EXPECT_THROW(align_to_surface(pts, surface, RigidTransform{}, coarse), InvalidInput);
-}
-
 }  // namespace
 }  // namespace knitforge

@@ -77,11 +77,20 @@ IcpResult align_to_surface(std::span<const Vec3> points, const TriMesh& target, 
   return align_to_surface(points, SurfaceBvh(target), initial, options, weights);
 }
 
-namespace {
-
-// The ICP rounds of align_to_surface() over all of `points` (checked).
-IcpResult icp_rounds(std::span<const Vec3> points, const SurfaceBvh& target, const RigidTransform& initial,
-                     const IcpOptions& options, std::span<const double> weights) {
+IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& target,
+                           const RigidTransform& initial, const IcpOptions& options,
+                           std::span<const double> weights) {
+  constexpr const char* kWhat = "align_to_surface";
+  if (points.empty()) throw InvalidInput("align_to_surface: no points");
+  if (options.max_iterations < 0 || !(options.tolerance >= 0)) {
+    throw InvalidInput(fmt::format("align_to_surface: max_iterations {} must be >= 0 and tolerance {} >= 0",
+                                   options.max_iterations, options.tolerance));
+  }
+  if (!initial.rotation.allFinite() || !initial.translation.allFinite()) {
+    throw InvalidInput("align_to_surface: the initial transform is not finite");
+  }
+  check_points(points, kWhat, "input");
+  check_weights(weights, points.size(), kWhat);
   const size_t n = points.size();
   double total = 0;
   for (size_t i = 0; i < n; ++i) total += weights.empty() ? 1.0 : weights[i];
@@ -167,53 +176,6 @@ IcpResult icp_rounds(std::span<const Vec3> points, const SurfaceBvh& target, con
       out.converged = true;
       break;
     }
-  }
-  return out;
-}
-
-}  // namespace
-
-IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& target,
-                           const RigidTransform& initial, const IcpOptions& options,
-                           std::span<const double> weights) {
-  constexpr const char* kWhat = "align_to_surface";
-  if (points.empty()) throw InvalidInput("align_to_surface: no points");
-  if (options.max_iterations < 0 || !(options.tolerance >= 0) || options.coarse_points < 0) {
-    throw InvalidInput(fmt::format(
-        "align_to_surface: max_iterations {} and coarse_points {} must be >= 0 and tolerance {} >= 0",
-        options.max_iterations, options.coarse_points, options.tolerance));
-  }
-  if (!initial.rotation.allFinite() || !initial.translation.allFinite()) {
-    throw InvalidInput("align_to_surface: the initial transform is not finite");
-  }
-  check_points(points, kWhat, "input");
-  check_weights(weights, points.size(), kWhat);
-  const size_t n = points.size();
-  const size_t coarse = static_cast<size_t>(options.coarse_points);
-  if (coarse == 0 || n <= coarse) return icp_rounds(points, target, initial, options, weights);
-  // The coarse pass: every stride-th point (a subset with zero total weight
-  // cannot be aligned: then the full set starts from `initial` itself).
-  const size_t stride = (n + coarse - 1) / coarse;
-  std::vector<Vec3> sub;
-  std::vector<double> sub_weights;
-  double sub_total = 0;
-  for (size_t i = 0; i < n; i += stride) {
-    sub.push_back(points[i]);
-    if (!weights.empty()) sub_weights.push_back(weights[i]), sub_total += weights[i];
-  }
-  RigidTransform start = initial;
-  int coarse_rounds = 0;
-  if (weights.empty() || sub_total > 0) {
-    const IcpResult c = icp_rounds(sub, target, initial, options, sub_weights);
-    start = c.transform;
-    coarse_rounds = c.iterations;
-  }
-  IcpResult out = icp_rounds(points, target, start, options, weights);
-  out.coarse_iterations = coarse_rounds;
-  if (coarse_rounds > 0) {
-    IcpOptions none = options;
-    none.max_iterations = 0;
-    out.initial_rms = icp_rounds(points, target, initial, none, weights).initial_rms;
   }
   return out;
 }

@@ -47,27 +47,13 @@ struct IcpOptions {
   /// Stop when the RMS distance decreases by less than this fraction in one
   /// round.
   double tolerance = 1e-5;
-  /// With more points than this (and > 0), a first pass aligns an evenly
-  /// strided subset of about this many points (their weights kept), and the
-  /// full set continues from its transform under the same stopping rule.
-  /// Off by default: it is faster but may end in another local minimum of
-  /// the RMS. Measured 2026-12-07: the free short-row hemisphere's
-  /// predicted shape (3.9k points, 20 mm RMS off its target), 30 full
-  /// rounds stopped at the limit at 19.860 mm; with 1000 coarse points 25
-  /// coarse rounds and 1 full round converged at 19.857 mm, 0.89 -> 0.29 s;
-  /// but the Shape-Up preview of `flatten monkey-saddle` with horizontal
-  /// darts (1772 points) went from 12.165 mm (27 full rounds, converged) to
-  /// 12.248 mm at 1000 coarse points (12.165 at 300 and 500): a worse
-  /// alignment, so a larger shape error than the design has.
-  int coarse_points = 0;
 };
 
 struct IcpResult {
   RigidTransform transform;  ///< maps the input points onto the surface
   double rms = 0.0;          ///< weighted RMS distance to the surface after `transform` (mm)
   double initial_rms = 0.0;  ///< the same for the initial transform (mm)
-  int iterations = 0;        ///< rounds run over every point
-  int coarse_iterations = 0; ///< rounds of the coarse pass (IcpOptions::coarse_points)
+  int iterations = 0;        ///< rounds run
   bool converged = false;    ///< tolerance reached before max_iterations
 };
 

@@ -22,7 +22,6 @@ ShapeError shape_error_to_target(std::span<const Vec3> rest, const StitchMesh& d
     const IcpResult icp = align_to_surface(rest, bvh, T, icp_options);
     T = icp.transform;
     ev.icp_iterations = icp.iterations;
-    ev.icp_coarse_iterations = icp.coarse_iterations;
   }
   ev.alignment = T;
   ev.aligned.reserve(rest.size());

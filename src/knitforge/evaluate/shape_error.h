@@ -22,8 +22,7 @@ namespace knitforge {
 struct ShapeError {
   std::vector<Vec3> aligned;   ///< the rest vertices after `alignment`
   RigidTransform alignment;
-  int icp_iterations = 0;         ///< ICP rounds over every vertex
-  int icp_coarse_iterations = 0;  ///< ICP rounds of the coarse pass (IcpOptions::coarse_points)
+  int icp_iterations = 0;
   /// RMS distance between corresponding designed and aligned rest vertices (mm).
   double correspondence_rms = 0.0;
   double target_size = 0.0;  ///< bounding-box diagonal of the target (mm)
