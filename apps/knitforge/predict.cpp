@@ -180,6 +180,7 @@ void add_predict_command(CLI::App& app, Action& action) {
                             {"relative_max", se.relative_max_error},
                             {"designed_rms_mm", se.designed_rms_error},
                             {"icp_rounds", se.icp_iterations},
+                            {"icp_converged", o->on.empty() ? nlohmann::json(se.icp_converged) : nlohmann::json()},
                             {"seconds", shape_timer.seconds()},
                             {"converged", r.solve.converged}};
         ply.scalars.push_back({"shape_error", se.stitch_error});

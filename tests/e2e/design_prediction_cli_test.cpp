@@ -48,6 +48,8 @@ class DesignPrediction : public Cli {
     const nlohmann::json p = nlohmann::json::parse(slurp(path("p/predict.json")));
     EXPECT_NEAR(rms, p["shape_error"]["rms_mm"].get<double>(), 1e-6);
     EXPECT_NEAR(max, p["shape_error"]["max_mm"].get<double>(), 1e-6);
+    EXPECT_TRUE(p["shape_error"]["icp_converged"].get<bool>()) << p["shape_error"].dump();
+    EXPECT_LT(p["shape_error"]["icp_rounds"].get<int>(), 30);
   }
 
   /// With one Newton iteration (after 20 L-BFGS ones) the prediction of `design` does not converge

@@ -122,5 +122,34 @@ TEST(SurfaceDistance, BadInputThrows) {
   EXPECT_THROW(SurfaceBvh(m).closest_point(Vec3(INFINITY, 0, 0)), InvalidInput);
 }
 
+// The gradient of half the squared distance is p - closest(p); its
+// derivative by central differences must be the Hessian the closest point
+// reports, for query points whose closest point lies inside a face, on an
+// edge and at a corner.
+TEST(SurfaceDistance, HalfSquaredDistanceHessianMatchesFiniteDifferences) {
+  TriMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0), Vec3(10, 10, 4)};
+  m.faces = {{0, 1, 2}, {1, 3, 2}};
+  const SurfaceBvh bvh(m);
+  using R = TrianglePoint::Region;
+  const struct {
+    Vec3 p;
+    R region;
+  } cases[] = {{Vec3(2, 3, 5), R::Face}, {Vec3(5, -4, 3), R::Edge}, {Vec3(-3, -2, 1), R::Vertex},
+               {Vec3(12, 5, -2), R::Edge}};
+  for (const auto& c : cases) {
+    const ClosestPoint cp = bvh.closest_point(c.p);
+    EXPECT_EQ(cp.region, c.region) << c.p.transpose();
+    const Mat3 H = cp.half_squared_distance_hessian();
+    const double h = 1e-4;
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 d = h * Vec3::Unit(j);
+      const Vec3 gp = (c.p + d) - bvh.closest_point(c.p + d).point;
+      const Vec3 gm = (c.p - d) - bvh.closest_point(c.p - d).point;
+      EXPECT_LT(((gp - gm) / (2 * h) - H.col(j)).norm(), 1e-6) << c.p.transpose() << " column " << j;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace knitforge

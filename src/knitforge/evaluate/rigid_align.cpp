@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <fmt/core.h>
+#include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
 #include "knitforge/util/errors.h"
@@ -101,13 +102,14 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
   // The face each point last matched: the next round's search starts from
   // it (the same closest points, found faster; SurfaceBvh::closest_point()).
   std::vector<int> last_face(n, -1);
-  auto match = [&](const RigidTransform& T, std::vector<Vec3>& c, std::vector<Vec3>& nrm) {
+  auto match = [&](const RigidTransform& T, std::vector<Vec3>& c, std::vector<Vec3>& nrm, std::vector<Mat3>& hess) {
     double sum = 0;
     for (size_t i = 0; i < n; ++i) {
       const Vec3 x = T.apply(points[i]);
       const ClosestPoint sp = target.closest_point(x, last_face[i]);
       last_face[i] = sp.face;
       c[i] = sp.point;
+      hess[i] = sp.half_squared_distance_hessian();
       // The gradient of the distance (exact also on edges and vertices);
       // the face normal for points on the surface.
       nrm[i] = sp.distance > 0 ? Vec3((x - sp.point) / sp.distance) : sp.normal;
@@ -115,53 +117,113 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     }
     return std::sqrt(sum / total);
   };
-  // One linearised point-to-plane step (Gauss-Newton on sum w ((x - c).n)^2,
-  // rotating about the weighted centroid), slightly damped so directions the
-  // surface does not constrain (sliding along a plane) stay put.
-  auto plane_step = [&](const RigidTransform& T, const std::vector<Vec3>& c, const std::vector<Vec3>& nrm) {
-    Vec3 centre = Vec3::Zero();
-    for (size_t i = 0; i < n; ++i) centre += w(i) * T.apply(points[i]);
-    centre /= total;
-    Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> Atb = Eigen::Matrix<double, 6, 1>::Zero();
+  // The quadratic model of f = 1/2 sum w d^2 for the motion x -> dR (x -
+  // centre) + centre + tau after T, dR = exp([omega]x), about (omega, tau) =
+  // 0. With r = x - c = d n, q = x - centre and J = dx/d(omega, tau) =
+  // [-[q]x, I], the gradient is g = sum w J^T r. The Hessian:
+  //  - Newton (`newton` true): sum w J^T H J + sum w (r . d^2x/domega^2), H
+  //    the Hessian of 1/2 d^2 at x (n n^T inside a face, I - e e^T on an
+  //    edge, I at a corner: exact while the closest points stay on their
+  //    features) and the rotation's second-order term sum w (sym(r q^T) -
+  //    (r . q) I). That term is large where the distances are (a shape far
+  //    from its target, points closest to the target's rim): without it the
+  //    steps come out too short and ICP converges slowly (0.87 a round on a
+  //    free hemisphere, still moving after 30 rounds).
+  //  - Gauss-Newton (point-to-plane): H = n n^T and no second-order term.
+  // Slightly damped so directions the surface does not constrain (sliding
+  // along a plane) stay put.
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  auto model = [&](const RigidTransform& T, const std::vector<Vec3>& c, const std::vector<Vec3>& nrm,
+                   const std::vector<Mat3>& hess, const Vec3& centre, bool newton, Mat6* hessian) {
+    Mat6 H = Mat6::Zero();
+    Vec6 g = Vec6::Zero();
     for (size_t i = 0; i < n; ++i) {
-      if (nrm[i].isZero()) continue;
       const Vec3 x = T.apply(points[i]);
-      Eigen::Matrix<double, 6, 1> a;
-      a << (x - centre).cross(nrm[i]), nrm[i];
-      AtA += w(i) * a * a.transpose();
-      Atb += w(i) * a * (c[i] - x).dot(nrm[i]);
+      const Vec3 q = x - centre;
+      const Vec3 r = x - c[i];
+      g.head<3>() += w(i) * q.cross(r);
+      g.tail<3>() += w(i) * r;
+      if (!hessian) continue;
+      if (newton) {
+        Mat3 Q;  // -[q]x = d(omega x q)/d omega
+        Q << 0, q.z(), -q.y(), -q.z(), 0, q.x(), q.y(), -q.x(), 0;
+        const Mat3 MQ = hess[i] * Q;
+        const Mat3 rq = r * q.transpose();
+        H.topLeftCorner<3, 3>() +=
+            w(i) * (Q.transpose() * MQ + 0.5 * (rq + rq.transpose()) - r.dot(q) * Mat3::Identity());
+        H.topRightCorner<3, 3>() += w(i) * MQ.transpose();
+        H.bottomRightCorner<3, 3>() += w(i) * hess[i];
+      } else if (!nrm[i].isZero()) {
+        Vec6 a;
+        a << q.cross(nrm[i]), nrm[i];
+        H += w(i) * a * a.transpose();
+      }
     }
-    const double damping = 1e-9 * AtA.trace() + 1e-300;
-    AtA.diagonal().array() += damping;
-    const Eigen::Matrix<double, 6, 1> xi = AtA.ldlt().solve(Atb);
+    if (hessian) {
+      H.bottomLeftCorner<3, 3>() = H.topRightCorner<3, 3>().transpose();
+      H.diagonal().array() += 1e-9 * H.trace() + 1e-300;
+      *hessian = H;
+    }
+    return g;
+  };
+  // The motion xi = (omega, tau) about `centre`, after T.
+  auto move = [](const Vec6& xi, const Vec3& centre, const RigidTransform& T) {
     const Vec3 omega = xi.head<3>();
     const double angle = omega.norm();
     const Mat3 dR = angle > 0 ? Mat3(Eigen::AngleAxisd(angle, omega / angle)) : Mat3::Identity();
-    // x -> dR (x - centre) + centre + tau, after T.
-    const RigidTransform step{dR, centre + xi.tail<3>() - dR * centre};
-    return step.after(T);
+    return RigidTransform{dR, centre + xi.tail<3>() - dR * centre}.after(T);
   };
 
   std::vector<Vec3> closest(n), normals(n), closest2(n), normals2(n);
+  std::vector<Mat3> hessians(n), hessians2(n);
   IcpResult out;
   out.transform = initial;
-  out.rms = out.initial_rms = match(initial, closest, normals);
+  out.rms = out.initial_rms = match(initial, closest, normals, hessians);
+  // Rotations are about one fixed point (the start's centroid), so the
+  // gradients of successive rounds are in the same coordinates.
+  Vec3 centre = Vec3::Zero();
+  for (size_t i = 0; i < n; ++i) centre += w(i) * initial.apply(points[i]);
+  centre /= total;
+  // BFGS on the six motion parameters: B starts as (and is reset to) the
+  // Newton Hessian and learns from each accepted step (s, y) = (xi, g_new -
+  // g): on a mesh the closest points jump between faces, edges and corners,
+  // so the curvature along a step differs from any one round's Hessian
+  // (smaller where the target is concave).
+  Mat6 B;
+  bool have_b = false;
+  Vec6 g = model(out.transform, closest, normals, hessians, centre, false, nullptr);
+  int small_gains = 0;
   for (int it = 0; it < options.max_iterations; ++it) {
     if (out.rms == 0) {
       out.converged = true;
       break;
     }
     out.iterations = it + 1;
-    // Point-to-plane converges fast; when its step does not lower the true
-    // RMS, the point-to-point (Kabsch) step does, or nothing does.
-    RigidTransform next = plane_step(out.transform, closest, normals);
-    double rms = next.rotation.allFinite() && next.translation.allFinite()
-                     ? match(next, closest2, normals2)
-                     : std::numeric_limits<double>::infinity();
+    // The BFGS step; when it does not lower the true RMS (or B is not
+    // positive definite), the Newton step with a fresh Hessian, then the
+    // Gauss-Newton (point-to-plane) step, then the point-to-point (Kabsch)
+    // step, which never increases it; or nothing.
+    double rms = std::numeric_limits<double>::infinity();
+    RigidTransform next;
+    Vec6 xi = Vec6::Zero();
+    for (int kind = have_b ? 0 : 1; kind < 3 && !(rms < out.rms); ++kind) {
+      if (kind > 0) {
+        model(out.transform, closest, normals, hessians, centre, kind == 1, &B);
+        have_b = kind == 1;
+      }
+      const Eigen::LLT<Mat6> llt(B);
+      if (llt.info() != Eigen::Success) continue;
+      xi = -llt.solve(g);
+      next = move(xi, centre, out.transform);
+      if (next.rotation.allFinite() && next.translation.allFinite()) {
+        rms = match(next, closest2, normals2, hessians2);
+      }
+    }
+    bool secant = rms < out.rms;
     if (!(rms < out.rms)) {
       next = rigid_align(points, closest, weights);
-      rms = match(next, closest2, normals2);
+      rms = match(next, closest2, normals2, hessians2);
     }
     if (!(rms < out.rms)) {  // no progress (rounding): keep the current transform
       out.converged = true;
@@ -172,7 +234,20 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     out.rms = rms;
     closest.swap(closest2);
     normals.swap(normals2);
-    if (gain < options.tolerance) {
+    hessians.swap(hessians2);
+    const Vec6 g_next = model(out.transform, closest, normals, hessians, centre, false, nullptr);
+    const Vec6 y = g_next - g;
+    g = g_next;
+    if (secant && have_b && xi.dot(y) > 1e-12 * xi.norm() * y.norm()) {
+      const Vec6 Bs = B * xi;
+      B += y * y.transpose() / y.dot(xi) - Bs * Bs.transpose() / xi.dot(Bs);
+    } else if (!secant) {
+      have_b = false;
+    }
+    // Quasi-Newton gains are not monotone (a small one can come before a
+    // large one), so two small ones in a row end it.
+    small_gains = gain < options.tolerance ? small_gains + 1 : 0;
+    if (small_gains == 2) {
       out.converged = true;
       break;
     }

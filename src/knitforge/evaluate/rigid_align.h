@@ -43,9 +43,9 @@ RigidTransform rigid_align(std::span<const Vec3> from, std::span<const Vec3> to,
 
 /// Options of align_to_surface().
 struct IcpOptions {
-  int max_iterations = 30;  ///< closest-point / Kabsch rounds at most
-  /// Stop when the RMS distance decreases by less than this fraction in one
-  /// round.
+  int max_iterations = 30;  ///< rounds (closest points, then a step) at most
+  /// Stop when the RMS distance decreases by less than this fraction in two
+  /// rounds in a row.
   double tolerance = 1e-5;
 };
 
@@ -59,15 +59,22 @@ struct IcpResult {
 
 /// ICP onto a surface: starting from `initial` (e.g. a correspondence fit
 /// by rigid_align()), each round finds the closest surface point c_i of every
-/// transformed point x_i and takes a point-to-plane step (one damped
-/// Gauss-Newton step on sum w_i ((x_i - c_i) . n_i)^2, n_i the direction from
-/// c_i to x_i, or the face normal for points on the surface). When that step
-/// does not lower the true RMS distance, a point-to-point step
-/// (rigid_align() of the points to their closest points, which never
-/// increases it) is taken instead. A round is accepted only when the RMS
+/// transformed point x_i and takes a step on f = 1/2 sum w_i |x_i - c_i|^2
+/// over the six parameters of a rigid motion (a rotation about the start's
+/// centroid and a translation): a quasi-Newton (BFGS) step whose matrix
+/// starts as f's Hessian with the closest points kept on their features
+/// (face, edge or corner: ClosestPoint::half_squared_distance_hessian(),
+/// plus the rotation's second-order term) and learns from each step. When
+/// it does not lower the true RMS distance, the Newton step with a fresh
+/// Hessian, then the Gauss-Newton (point-to-plane) step, then the
+/// point-to-point step (rigid_align() of the points to their closest points,
+/// which never increases it). A round is accepted only when the RMS
 /// decreases, so the RMS never increases and the result is never worse than
-/// `initial`. Stops when the relative decrease of a round is below
-/// `tolerance`, when no step decreases it, or after max_iterations rounds.
+/// `initial`. Point-to-plane steps alone converge slowly on a shape far from
+/// its target (on a free hemisphere 0.87 a round, 30 rounds without
+/// converging; with the Newton matrix 10). Stops (converged) when the relative
+/// decrease is below `tolerance` in two rounds in a row or no step
+/// decreases it; not converged after max_iterations rounds. Deterministic.
 /// \param weights empty (all 1) or one weight >= 0 per point, not all zero.
 /// \throw InvalidInput for no points, non-finite points, bad weights or
 ///        options; as SurfaceBvh for a bad surface.

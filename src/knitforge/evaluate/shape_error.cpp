@@ -22,6 +22,7 @@ ShapeError shape_error_to_target(std::span<const Vec3> rest, const StitchMesh& d
     const IcpResult icp = align_to_surface(rest, bvh, T, icp_options);
     T = icp.transform;
     ev.icp_iterations = icp.iterations;
+    ev.icp_converged = icp.converged;
   }
   ev.alignment = T;
   ev.aligned.reserve(rest.size());

@@ -23,6 +23,7 @@ struct ShapeError {
   std::vector<Vec3> aligned;   ///< the rest vertices after `alignment`
   RigidTransform alignment;
   int icp_iterations = 0;
+  bool icp_converged = false;  ///< ICP reached its tolerance (false without ICP)
   /// RMS distance between corresponding designed and aligned rest vertices (mm).
   double correspondence_rms = 0.0;
   double target_size = 0.0;  ///< bounding-box diagonal of the target (mm)

@@ -162,7 +162,26 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p, int hint_face) const {
   }
   best.distance = std::sqrt(best2);
   best.normal = normal_[best_slot];
+  const auto& t = tri_[best_slot];
+  const TrianglePoint tp = closest_triangle_point(p, t[0], t[1], t[2]);
+  best.region = tp.region;
+  if (tp.region == TrianglePoint::Region::Edge) {
+    const Vec3 e = t[(tp.feature + 1) % 3] - t[tp.feature];
+    if (e.norm() > 0) best.edge = e.normalized();
+  }
   return best;
+}
+
+Mat3 ClosestPoint::half_squared_distance_hessian() const {
+  switch (region) {
+    case TrianglePoint::Region::Face:
+      return normal * normal.transpose();
+    case TrianglePoint::Region::Edge:
+      return Mat3::Identity() - edge * edge.transpose();
+    case TrianglePoint::Region::Vertex:
+      break;
+  }
+  return Mat3::Identity();
 }
 
 std::vector<ClosestPoint> closest_points_on_surface(const TriMesh& surface, std::span<const Vec3> points) {

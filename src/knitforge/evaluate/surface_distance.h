@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/geometry/vec.h"
 
@@ -29,6 +30,15 @@ struct ClosestPoint {
   int face = -1;               ///< face that holds it (smallest index on ties within a leaf)
   double distance = 0.0;       ///< Euclidean distance query -> point (mm)
   Vec3 normal = Vec3::Zero();  ///< unit normal of `face` (zero if degenerate)
+  /// Where on `face` the point lies: inside it, on an edge or at a corner.
+  TrianglePoint::Region region = TrianglePoint::Region::Face;
+  Vec3 edge = Vec3::Zero();  ///< unit direction of that edge when region is Edge, else zero
+
+  /// The Hessian of half the squared distance, d²(½ distance²)/dp², where
+  /// the closest point stays on the same feature: n nᵀ inside a face,
+  /// I - e eᵀ on an edge, I at a corner (the squared distance to a plane, a
+  /// line, a point). Used by ICP's Newton step (rigid_align.h).
+  Mat3 half_squared_distance_hessian() const;
 };
 
 /// A BVH over the faces of a TriMesh, for repeated closest-point queries
