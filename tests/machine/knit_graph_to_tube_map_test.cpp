@@ -64,12 +64,7 @@ KnittingMap shaped_heel() {
 }
 
 KnittingMap small_tapered(int dir = 1, bool closed = false) {
-  TubeMapOptions o;
-  o.round = 16;
-  o.rows = 8;
-  o.decrease_rounds = 2;
-  o.every = 3;
-  KnittingMap m = tube_knitting_map(o);
+  KnittingMap m = test::small_tapered_tube();
   if (dir < 0) {
     m.direction.assign(static_cast<size_t>(m.rows), -1);
     for (size_t r = 0; r < m.seam.size(); ++r) m.seam[r] = 4 + static_cast<int>(r) / 2;  // s, s or s+1, ...

@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-#include "knitforge/convert/sample_knitting_map.h"
+#include "convert/map_test_helpers.h"
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/stitch_mesh_ply.h"
@@ -126,12 +126,7 @@ TEST_F(ProgramReportTest, ATubeIsARingOfStitchesClosedAround) {
 }
 
 TEST_F(ProgramReportTest, AShapedTubeIsDrawnFromItsTubularMap) {
-  TubeMapOptions o;
-  o.round = 16;
-  o.rows = 8;
-  o.decrease_rounds = 2;
-  o.every = 3;
-  const KnittingMap map = tube_knitting_map(o);
+  const KnittingMap map = test::small_tapered_tube();
   const KnitoutProgram p = write_knitout(map, machine_profile("kniterate"));
   ProgramReportOptions ro;
   ro.html = false;

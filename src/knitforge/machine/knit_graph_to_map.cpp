@@ -55,6 +55,28 @@ std::string first_error(const KnittabilityReport& check) {
   return {};
 }
 
+// Makes `m` canonical (canonical_cells(); a tube's columns packed,
+// pack_tube_columns()) and returns "" when the seed's rules pass and the
+// program knits exactly it, else why not.
+std::string accept_map(const KnitGraph& g, KnittingMap& m) {
+  const bool tube = m.tubular();
+  try {
+    m = tube ? pack_tube_columns(m) : canonical_cells(m);
+  } catch (const InvalidInput& e) {
+    return fmt::format("the fabric gives no valid {}: {}", tube ? "tubular map" : "knitting map", e.what());
+  }
+  const KnittabilityReport check = check_knittability(m);
+  if (!check.ok())
+    return fmt::format("the fabric's {} is not knittable by the seed's rules: {}", tube ? "tubular map" : "map",
+                       first_error(check));
+  const GraphComparison cmp = compare_knit_graph(g, m);
+  if (!cmp.ok())
+    return fmt::format("the fabric is no {} exactly ({} mismatch(es): {})",
+                       tube ? "tube a tubular map describes" : "sheet a knitting map describes", cmp.mismatches,
+                       cmp.issues.empty() ? std::string() : cmp.issues.front().message);
+  return {};
+}
+
 // Fills out's loop_of_cell and cell_of_loop for `map`, whose stitches in
 // knitting order are the stitch loops in formation order (what
 // compare_knit_graph() has checked).
@@ -273,19 +295,9 @@ std::string tube_fabric(const KnitGraph& g, const std::vector<int>& S, const std
     m.closed_end = m.closed_end && is_round(i, j);
   }
 
-  KnittingMap packed;
-  try {
-    packed = pack_tube_columns(m);
-  } catch (const InvalidInput& e) {
-    return std::string("the fabric gives no valid tubular map: ") + e.what();
-  }
-  const KnittabilityReport check = check_knittability(packed);
-  if (!check.ok()) return "the fabric's tubular map is not knittable by the seed's rules: " + first_error(check);
-  const GraphComparison cmp = compare_knit_graph(g, packed);
-  if (!cmp.ok())
-    return fmt::format("the fabric is no tube a tubular map describes exactly ({} mismatch(es): {})", cmp.mismatches,
-                       cmp.issues.empty() ? std::string() : cmp.issues.front().message);
-  out.map = std::move(packed);
+  const std::string why = accept_map(g, m);
+  if (!why.empty()) return why;
+  out.map = std::move(m);
   name_cells(S, out.map, out);
   // A plain tube: every row a round of the same stitches.
   bool plain = true;
@@ -469,17 +481,8 @@ std::string sheet_fabric(const KnitGraph& g, const std::vector<int>& S, const st
         m.set_yarn(static_cast<int>(i / Cc), static_cast<int>(i % Cc),
                    std::max(0, loop(loc[i]).first_carrier()));
   }
-  try {
-    m = canonical_cells(m);
-  } catch (const InvalidInput& e) {
-    return std::string("the fabric gives no valid knitting map: ") + e.what();
-  }
-  const KnittabilityReport check = check_knittability(m);
-  if (!check.ok()) return "the fabric's map is not knittable by the seed's rules: " + first_error(check);
-  const GraphComparison cmp = compare_knit_graph(g, m);
-  if (!cmp.ok())
-    return fmt::format("the fabric is no sheet a knitting map describes exactly ({} mismatch(es): {})",
-                       cmp.mismatches, cmp.issues.empty() ? std::string() : cmp.issues.front().message);
+  const std::string why = accept_map(g, m);
+  if (!why.empty()) return why;
   out.map = std::move(m);
   name_cells(S, out.map, out);
   return {};
