@@ -24,7 +24,8 @@ namespace {
 
 // A tube drawn top row first (test::parse_map), every row a round going
 // `dir` from seam line `seam` unless listed in `open` (short rows).
-KnittingMap tube_map(const std::vector<std::string>& top_first, int dir, int seam, const std::vector<int>& open = {}) {
+KnittingMap tube_map(const std::vector<std::string>& top_first, int dir, int seam,
+                     const std::vector<int>& open = {}) {
   KnittingMap m = test::parse_map(top_first);
   m.direction.assign(static_cast<size_t>(m.rows), static_cast<int8_t>(dir));
   m.seam.assign(static_cast<size_t>(m.rows), seam);
@@ -150,8 +151,9 @@ TEST(KnitGraphToTubeMap, BuiltInTubesComeBackAsTheirMaps) {
     if (sample_knitting_map(n).tubular()) expect_round_trip("sample " + n, sample_knitting_map(n));
   TubeDesignOptions o;
   o.params = {7.0, 5.6};
-  const std::vector<std::pair<std::string, TriMesh>> shapes = {
-      {"sleeve", sleeve(SleeveShape{}, 6.0)}, {"sock", sock(SockShape{}, 6.0)}, {"beanie", beanie(BeanieShape{}, 6.0)}};
+  const std::vector<std::pair<std::string, TriMesh>> shapes = {{"sleeve", sleeve(SleeveShape{}, 6.0)},
+                                                               {"sock", sock(SockShape{}, 6.0)},
+                                                               {"beanie", beanie(BeanieShape{}, 6.0)}};
   for (const auto& [name, surface] : shapes) {
     SCOPED_TRACE(name);
     const TubeDesign d = design_tube(surface, o);
@@ -193,7 +195,8 @@ TEST(KnitGraphToTubeMap, TwoBedProgramsThatAreNoTubeSayWhy) {
   const size_t i = t.find("; course 0");
   const size_t j = t.find("; course 1", i);
   std::string block = t.substr(i, j - i);
-  for (size_t k = 0; (k = block.find("knit - b", k)) != std::string::npos; k += 8) block.replace(k, 8, "knit - f");
+  for (size_t k = 0; (k = block.find("knit - b", k)) != std::string::npos; k += 8)
+    block.replace(k, 8, "knit - f");
   const KnitGraphFabric moved = fabric_of(t.substr(0, i) + block + t.substr(j), "kniterate");
   EXPECT_EQ(moved.kind, "");
   EXPECT_NE(moved.reason.find("moves to the other bed"), std::string::npos) << moved.reason;
