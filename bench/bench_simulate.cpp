@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include "knitforge/convert/random_knitting_map.h"
+#include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/machine/knit_graph_compare.h"
 #include "knitforge/machine/knit_graph_to_map.h"
 #include "knitforge/machine/knitout_parse.h"
@@ -68,9 +69,27 @@ void BM_KnitGraphFabric(benchmark::State& state) {
   }
 }
 
+// The same for a shaped tube: 200 stitches round narrowing to 40 in 40
+// decrease rounds, 200 rounds, on the Kniterate (knit_graph_to_map.h, "Tubes").
+void BM_KnitGraphFabricTube(benchmark::State& state) {
+  TubeMapOptions o;
+  o.round = 200;
+  o.rows = 200;
+  o.decrease_rounds = 40;
+  o.every = 4;
+  const KnitoutProgram p = write_knitout(tube_knitting_map(o), machine_profile("kniterate"));
+  for (auto _ : state) {
+    const KnitGraphFabric f = knit_graph_fabric(*p.simulation);
+    if (f.kind != "tube" || !f.map.tubular()) state.SkipWithError("the benchmark tube is not read back as its map");
+    benchmark::DoNotOptimize(f.map.rows);
+  }
+  state.counters["stitches"] = static_cast<double>(knit_graph_fabric(*p.simulation).stitch_loops.size());
+}
+
 }  // namespace
 
 BENCHMARK(BM_KnitGraphFabric)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KnitGraphFabricTube)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ParseKnitout)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ParseAndSimulateKnitout)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CompareKnitGraph)->Unit(benchmark::kMillisecond);

@@ -88,9 +88,13 @@ void add_simulate_command(CLI::App& app, Action& action) {
         const KnitGraphFabric& f = rep.fabric;
         note(fmt::format("fabric view -> {}/report.html ({}{}; {} of {} findings placed on the fabric)", o->report,
                          f.kind.empty() ? "not drawn: " + f.reason : f.kind,
-                         f.kind == "sheet"  ? fmt::format(", {} courses x {} wales", f.map.rows, f.map.cols)
-                         : f.kind == "tube" ? fmt::format(", {} rounds of {} stitches", f.rounds, f.ring)
-                                            : std::string(),
+                         f.kind == "sheet" ? fmt::format(", {} courses x {} wales", f.map.rows, f.map.cols)
+                         : f.ring > 0      ? fmt::format(", {} round{} of {} stitches", f.rounds, f.rounds == 1 ? "" : "s", f.ring)
+                         : f.kind == "tube"
+                             ? fmt::format(", {} courses ({} rounds) x {} columns{}", f.map.rows,
+                                           rep.json["fabric"]["rounds"].get<int>(), f.map.cols,
+                                           f.map.closed_end ? ", closed at the end" : "")
+                             : std::string(),
                          rep.json["diagnostics_placed"].get<int>(), rep.json["diagnostics"].size()));
       }
       if (o->json) std::printf("%s\n", j.dump(2).c_str());

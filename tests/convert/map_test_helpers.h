@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "knitforge/convert/map_to_stitch_mesh.h"
+#include "knitforge/convert/sample_knitting_map.h"
 #include "knitforge/core/knitting_map.h"
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/util/errors.h"
@@ -94,6 +95,12 @@ inline int count_boundary_apexes(const StitchMesh& mesh) {
     if (v >= 0 && adj.is_boundary_vertex(v)) ++n;
   }
   return n;
+}
+
+// A tube of 16 stitches round, 8 rounds, narrowing to 8 in two decrease
+// rounds (3 and 6), seam 0.
+inline KnittingMap small_tapered_tube() {
+  return tube_knitting_map({.round = 16, .rows = 8, .decrease_rounds = 2, .every = 3});
 }
 
 // Eight rows of a tube of 12 columns: rounds 0-1 (seam `seam_before`),

@@ -27,14 +27,7 @@ KnittingMap small_tube(int round = 8, int rows = 4) {
   return tube_knitting_map(o);
 }
 
-KnittingMap small_tapered() {
-  TubeMapOptions o;
-  o.round = 16;
-  o.rows = 8;
-  o.decrease_rounds = 2;
-  o.every = 3;
-  return tube_knitting_map(o);
-}
+KnittingMap small_tapered() { return test::small_tapered_tube(); }
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::istringstream is(text);

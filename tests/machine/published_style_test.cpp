@@ -38,7 +38,7 @@ TEST(PublishedStylePrograms, GetTheVerdictOfTheMachinesSoftware) {
       {"tube_loops_left.k", "shima-swg091n2", {{KnitoutRule::LoopsLeft, 1}}, "tube"},
       {"all_needle_racked.k", "shima-swg091n2", {{KnitoutRule::Drop, 12}}, "sheet"},
       {"split_increase.k", "generic", {{KnitoutRule::Drop, 7}}, ""},
-      {"kniterate_quarter_pitch.k", "kniterate", {{KnitoutRule::Racking, 2}, {KnitoutRule::Drop, 16}}, ""},
+      {"kniterate_quarter_pitch.k", "kniterate", {{KnitoutRule::Racking, 2}, {KnitoutRule::Drop, 16}}, "tube"},
       {"colourwork_stripes.k", "kniterate", {{KnitoutRule::Drop, 8}}, "sheet"},
   };
   for (const Expect& c : cases) {

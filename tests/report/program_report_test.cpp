@@ -8,11 +8,13 @@
 
 #include <unistd.h>
 
+#include "convert/map_test_helpers.h"
 #include "knitforge/core/stitch_adjacency.h"
 #include "knitforge/io/knitting_map_csv.h"
 #include "knitforge/io/stitch_mesh_ply.h"
 #include "knitforge/machine/knitout_parse.h"
 #include "knitforge/machine/knitout_simulate.h"
+#include "knitforge/machine/knitout_writer.h"
 #include "knitforge/machine/machine_profile.h"
 
 namespace knitforge {
@@ -113,9 +115,29 @@ TEST_F(ProgramReportTest, ATubeIsARingOfStitchesClosedAround) {
   const double pitch = 25.4 / 15.0;
   EXPECT_NEAR(r_sum / mesh.num_vertices(), 20 * pitch / (2 * M_PI), 0.1 * 20 * pitch / (2 * M_PI));
   EXPECT_NEAR(y1 - y0, 8 * 0.75 * pitch, 0.2 * 8 * 0.75 * pitch);
-  EXPECT_FALSE(fs::exists(dir_ / "yarn.obj"));
+  // read back as its tubular map (knit_graph_to_map.h): the map and its yarn
+  ASSERT_TRUE(r.fabric.map.tubular());
+  EXPECT_EQ(read_knitting_map_csv((dir_ / "knitting_map.csv").string()), r.fabric.map);
+  EXPECT_TRUE(fs::exists(dir_ / "yarn.obj"));
+  EXPECT_EQ(r.json["fabric"]["rounds"], 8);
+  EXPECT_EQ(r.json["fabric"]["ring"], 20);
   EXPECT_EQ(r.json["diagnostics"][0]["check"], "loops-left");
   EXPECT_TRUE(r.json["diagnostics"][0].contains("position"));
+}
+
+TEST_F(ProgramReportTest, AShapedTubeIsDrawnFromItsTubularMap) {
+  const KnittingMap map = test::small_tapered_tube();
+  const KnitoutProgram p = write_knitout(map, machine_profile("kniterate"));
+  ProgramReportOptions ro;
+  ro.html = false;
+  const ProgramReport r = write_program_report("tapered.k", p.text, *p.simulation, dir_.string(), ro);
+  ASSERT_EQ(r.fabric.kind, "tube") << r.fabric.reason;
+  EXPECT_EQ(read_knitting_map_csv((dir_ / "knitting_map.csv").string()), map);
+  EXPECT_EQ(read_stitch_mesh_ply((dir_ / "stitch_mesh.ply").string()).num_stitches(), map.num_stitches());
+  EXPECT_EQ(r.json["fabric"]["courses"], 8);
+  EXPECT_EQ(r.json["fabric"]["rounds"], 8);
+  EXPECT_EQ(r.json["fabric"]["wales"], 16);
+  EXPECT_FALSE(r.json["fabric"].contains("ring"));  // the rounds change
 }
 
 TEST_F(ProgramReportTest, AFabricThatIsNoSheetIsReportedNotDrawn) {

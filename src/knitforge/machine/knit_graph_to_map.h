@@ -2,7 +2,7 @@
 /// \file knit_graph_to_map.h
 /// The fabric a knitout program makes, as a knitting map (docs/machines.md,
 /// "A fabric view of any program"): the inverse of the knitout writer for
-/// sheets, and the rounds of a plain tube.
+/// sheets and for tubes knitted in the round (shaped, short rows, closed).
 ///
 /// Stitches. The stitch loops of a simulated program (knitout_simulate.h)
 /// are the loops formed in fabric sections (see knit_graph.h: a program
@@ -34,16 +34,49 @@
 /// The map is accepted only when check_knittability() passes and
 /// compare_knit_graph() finds the program knits exactly this map.
 ///
-/// Tubes. When the rows alternate between the two beds and every row's
-/// stitches are on one bed (circular knitting: front pass, back pass, ...),
-/// each front row and the back row after it form one round; the tube is
-/// described by `rounds` x `ring` stitches (loop_of_round_stitch). Only
-/// plain tubes (every round the same stitches) are described. When the two
-/// halves of a round have equal stitch counts, the tube also comes as its
-/// tubular map (KnittingMap::seam, docs/tubes.md: the front half in columns
-/// 0..ring/2-1, the seam where the rounds start), kept only when
-/// compare_knit_graph() finds the program knits exactly that map; `map`,
-/// `loop_of_cell` and `cell_of_loop` are then set as for sheets.
+/// Tubes (docs/tubes.md). A fabric with stitches on both beds is first read
+/// as a tube, in the tubular map's terms (KnittingMap::seam): the front bed
+/// is the front half, the back bed the back half, and a stitch goes +1 round
+/// the tube when it is knitted + on the front or - on the back.
+///  - Wales as for sheets; a wale that changes beds is no tube's.
+///  - Rows: the stitches fall into strokes, runs with one carrier set going
+///    one way round, each further round than the last (on its bed, or
+///    across a fold). A stroke is cut into rows that knit no wale twice and
+///    no stitch through another of the same row: a *round* holds every wale
+///    alive across it (a stitch at or before its end and one at or after its
+///    start; the others are held), a *short row* (open row) holds part of
+///    them, does not cross the left fold (line 0) and is neither the first
+///    nor the last row. The cut takes the longest rows from the stroke's end
+///    (rounds as late as possible: a wedge's last short row, then the
+///    rounds from the new seam), else from its start.
+///  - Columns: each bed's wales in the left-to-right order every row agrees
+///    on (a cycle is a cable), the front half left to right, the back half
+///    from the right fold to the left fold, then packed by
+///    pack_tube_columns() (each half in the fewest columns: where a column
+///    without stitches lies is not part of the fabric).
+///  - Cells: a round's seam is the line before its first stitch; a short
+///    row's two ends are ShortRowLeft and ShortRowRight; a wale's first
+///    stitch above row 0 is an Increase (a tuck on an empty needle), its
+///    last below the last row a Decrease; the rest Knit, Collapsed where a
+///    wale is held or a column empty, canonical_cells() finishes.
+///  - Closed end (KnittingMap::closed_end): some loop pulls through two
+///    loops of the last round that are not neighbours in it (a closing seam
+///    across the beds; compare_knit_graph() checks its pairs).
+/// The map is kept only when check_knittability() passes and
+/// compare_knit_graph() finds the program knits exactly it; kind "tube",
+/// `map`, `loop_of_cell` and `cell_of_loop` as for sheets. For knitforge's
+/// own tube programs it is the tube writer's inverse up to packed columns:
+/// knit_graph_fabric(write_knitout(M)) == pack_tube_columns(M), with
+/// increases, decreases, short rows, moving seams and closed ends (tested).
+/// When every row is a round of the same stitches (a plain tube) the tube is
+/// also described as `rounds` x `ring` stitches (loop_of_round_stitch); so
+/// is a program knitting plain rounds front pass, back pass, ... whose map
+/// is refused (then `reason` says why there is no map). Otherwise a two-bed
+/// fabric is tried as a sheet (a double knit), and when it is neither the
+/// reason gives both: "neither a tube (...) nor a sheet (...)". Not
+/// covered, as for sheets: rounds knitted by several carriers at once
+/// (jacquard). Untested: a decrease moved across a fold (the tube writer
+/// never makes one).
 
 #include <string>
 #include <vector>
@@ -54,24 +87,25 @@
 namespace knitforge {
 
 struct KnitGraphFabric {
-  /// What the fabric is: "sheet" (map is valid), "tube" (rounds), or "" when
-  /// it is neither (reason says why).
+  /// What the fabric is: "sheet" (map is valid), "tube" (map is its tubular
+  /// map, or only rounds x ring for plain rounds without one), or "" when it
+  /// is neither (reason says why).
   std::string kind;
   std::string reason;
   std::vector<int> stitch_loops;  ///< the stitch loops, in formation order
   // --- sheets (and tubes with a map) ---
-  KnittingMap map;                ///< canonical and knittable when kind == "sheet" (or a tube's map, see above)
+  KnittingMap map;                ///< canonical and knittable when set (every sheet, every tube but plain rounds without a map)
   std::vector<int> loop_of_cell;  ///< rows*cols: the loop of each stitch cell, -1 elsewhere
   std::vector<int> cell_of_loop;  ///< per graph loop: row*cols+col of its cell, -1 when not a stitch
-  // --- tubes ---
+  // --- plain tubes (every row a round of the same stitches; 0 otherwise) ---
   int rounds = 0;                 ///< rounds of the tube
   int ring = 0;                   ///< stitches per round
   std::vector<int> loop_of_round_stitch;  ///< rounds*ring loops, each round in knitting order
 };
 
 /// The fabric of `sim` (see the file comment). Never throws on a program's
-/// content: a fabric that is neither a sheet nor a plain tube comes back
-/// with kind "" and the reason.
+/// content: a fabric that is neither a sheet nor a tube comes back with
+/// kind "" and the reason.
 KnitGraphFabric knit_graph_fabric(const KnitoutSimulation& sim);
 
 }  // namespace knitforge

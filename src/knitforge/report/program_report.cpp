@@ -86,7 +86,7 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
                                 stitches, opt.max_stitches));
   RelaxOptions ro;
   ro.max_iterations = opt.relax_iterations;
-  if (draw && F.kind == "sheet") {
+  if (draw && F.map.rows > 0) {  // a sheet, or a tube read back as its tubular map
     mesh = map_to_stitch_mesh(F.map, params, ro);
     for (int s = 0; s < mesh.num_stitches(); ++s) {
       const Stitch& st = mesh.stitches[static_cast<size_t>(s)];
@@ -99,7 +99,7 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
     } catch (const Error& e) {
       notes.push_back(std::string("no yarn model: ") + e.what());
     }
-  } else if (draw && F.kind == "tube") {
+  } else if (draw && F.ring > 0) {  // plain rounds without a map
     mesh = tube_mesh(F.rounds, F.ring, params);
     RelaxOptions tro = ro;
     tro.warm_up = 0.0;
@@ -149,7 +149,7 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
   const json verdict = simulation_json(sim);
   machine["counts"] = verdict["counts"];
   machine["notes"] = json::array({"knitting time and yarn lengths are estimates from nominal machine data"});
-  if (F.kind == "sheet") {
+  if (F.map.rows > 0) {
     machine["courses"] = F.map.rows;
     machine["wales"] = F.map.cols;
   }
@@ -158,10 +158,17 @@ ProgramReport write_program_report(const std::string& program_name, const std::s
                  {"stitches", stitches},
                  {"stitch_size_mm", {params.stitch_width, params.stitch_height}}};
   if (!F.reason.empty()) fabric["reason"] = F.reason;
-  if (F.kind == "sheet") {
+  if (F.map.rows > 0) {
     fabric["courses"] = F.map.rows;
     fabric["wales"] = F.map.cols;
-  } else if (F.kind == "tube") {
+  }
+  if (F.map.tubular()) {
+    int rounds = 0;
+    for (int r = 0; r < F.map.rows; ++r) rounds += F.map.closed(r);
+    fabric["rounds"] = rounds;
+    fabric["closed_end"] = F.map.closed_end;
+  }
+  if (F.ring > 0) {
     fabric["rounds"] = F.rounds;
     fabric["ring"] = F.ring;
   }

@@ -9,19 +9,20 @@
 ///  - knitout.k: the program (so the page's knitout panel and download work);
 ///  - report.json: {"program", "machine": verdict, counts per category,
 ///    statistics, yarn per carrier (estimates), "fabric": {"kind": "sheet" |
-///    "tube" | "", "reason", "stitches", "courses", "wales" / "rounds",
-///    "ring", "stitch_size_mm"}, "courses": one entry per carriage pass that
+///    "tube" | "", "reason", "stitches", "courses" and "wales" (the map's
+///    rows and columns), "rounds" and "closed_end" (a tube's map), "rounds"
+///    and "ring" (plain rounds), "stitch_size_mm"}, "courses": one entry per carriage pass that
 ///    made stitches ({"pass", "lines": [first, last], "carriers",
 ///    "direction", "knits", "tucks", "splits", "misses", "needles": [lo, hi],
 ///    "section", "time_s"}), "diagnostics": every finding with its line,
 ///    severity, category, check, message and, where it concerns a loop of
 ///    the fabric, the stitch and its position (mm) on the relaxed shape};
-///  - for a sheet (knit_graph_to_map.h): knitting_map.csv, stitch_mesh.ply
-///    (the map's stitch mesh relaxed to its rest shape, relax_stitch_mesh.h)
-///    and yarn.obj (stitch_mesh_to_yarn.h);
-///  - for a plain tube: stitch_mesh.ply, the rounds as a ring of quads
-///    closed around, relaxed from a cylinder (no yarn model: the yarn model
-///    follows a sheet's one-stroke order);
+///  - for a sheet or a tube read back as its map (knit_graph_to_map.h):
+///    knitting_map.csv, stitch_mesh.ply (the map's stitch mesh relaxed to
+///    its rest shape, relax_stitch_mesh.h; a tube's from a cylinder) and
+///    yarn.obj (stitch_mesh_to_yarn.h);
+///  - for plain rounds without a map: stitch_mesh.ply, the rounds as a ring
+///    of quads closed around, relaxed from a cylinder (no yarn model);
 ///  - report.html (report_html.h), unless options.html is false.
 /// Stitch size: one needle pitch wide (25.4 / gauge mm) and 0.75 pitch high
 /// unless given (a nominal jersey proportion; the shape is a prediction of
