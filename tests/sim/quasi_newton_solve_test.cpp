@@ -130,6 +130,26 @@ QuasiNewtonOptions lbfgs_options() {
   return o;
 }
 
+// After a failed trial the line search moves to the minimiser of the
+// quadratic through E(0), E'(0) and E(alpha): exact for a quadratic energy,
+// kept within [0.1, 0.5] alpha, halving without a finite trial or a minimum.
+TEST(NextTrialStep, IsTheQuadraticsMinimiserWithinSafeguards) {
+  const double e0 = 5.0, slope = -2.0;
+  auto quadratic = [&](double c, double a) { return e0 + slope * a + c * a * a; };
+  // E = 5 - 2a + 4a^2: minimum at a = 0.25, within [0.1, 0.5] of a trial at 1.
+  EXPECT_NEAR(next_trial_step(1.0, e0, slope, quadratic(4.0, 1.0)), 0.25, 1e-15);
+  // The same from a trial at 0.8 (minimum 0.25 within [0.08, 0.4]).
+  EXPECT_NEAR(next_trial_step(0.8, e0, slope, quadratic(4.0, 0.8)), 0.25, 1e-15);
+  // A very stiff quadratic (minimum 0.01) is held at 0.1 alpha; a shallow
+  // one whose minimum lies beyond half the trial at 0.5 alpha.
+  EXPECT_DOUBLE_EQ(next_trial_step(1.0, e0, slope, quadratic(100.0, 1.0)), 0.1);
+  EXPECT_DOUBLE_EQ(next_trial_step(1.0, e0, slope, quadratic(1.5, 1.0)), 0.5);
+  // Not finite, or no curvature: halve.
+  EXPECT_DOUBLE_EQ(next_trial_step(0.6, e0, slope, std::numeric_limits<double>::infinity()), 0.3);
+  EXPECT_DOUBLE_EQ(next_trial_step(0.6, e0, slope, std::nan("")), 0.3);
+  EXPECT_DOUBLE_EQ(next_trial_step(0.6, e0, slope, quadratic(-1.0, 0.6)), 0.3);
+}
+
 TEST(QuasiNewtonSolve, ReachesNewtonsMinimumOfAConvexProblem) {
   const ChainProblem problem;
   SparseSolver solver;

@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include "knitforge/util/errors.h"
@@ -33,6 +34,19 @@ void check_points(std::span<const Vec3> pts, const char* what, const char* name)
   for (size_t i = 0; i < pts.size(); ++i) {
     if (!pts[i].allFinite()) throw InvalidInput(fmt::format("{}: {} point {} is not finite", what, name, i));
   }
+}
+
+// -B⁻¹ g for a symmetric B; when B is not positive definite, B is replaced
+// by |B| (its eigenvalues by their absolute values, at least 10⁻⁹ of the
+// largest), a descent direction's matrix.
+Eigen::Matrix<double, 6, 1> descent_step(Eigen::Matrix<double, 6, 6>& B, const Eigen::Matrix<double, 6, 1>& g) {
+  const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(B);
+  if (llt.info() == Eigen::Success) return -llt.solve(g);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(B);
+  const Eigen::Matrix<double, 6, 1> abs = es.eigenvalues().cwiseAbs();
+  const Eigen::Matrix<double, 6, 1> lambda = abs.cwiseMax(1e-9 * abs.maxCoeff() + 1e-300);
+  B = es.eigenvectors() * lambda.asDiagonal() * es.eigenvectors().transpose();
+  return -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(lambda);
 }
 
 }  // namespace
@@ -212,15 +226,11 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
         model(out.transform, closest, normals, hessians, centre, kind == 1, &B);
         have_b = kind == 1;
       }
-      const Eigen::LLT<Mat6> llt(B);
-      if (llt.info() != Eigen::Success) continue;
-      xi = -llt.solve(g);
+      xi = descent_step(B, g);
       next = move(xi, centre, out.transform);
-      if (next.rotation.allFinite() && next.translation.allFinite()) {
-        rms = match(next, closest2, normals2, hessians2);
-      }
+      if (next.rotation.allFinite() && next.translation.allFinite()) rms = match(next, closest2, normals2, hessians2);
     }
-    bool secant = rms < out.rms;
+    const bool secant = rms < out.rms;
     if (!(rms < out.rms)) {
       next = rigid_align(points, closest, weights);
       rms = match(next, closest2, normals2, hessians2);

@@ -66,7 +66,8 @@ struct IcpResult {
 /// (face, edge or corner: ClosestPoint::half_squared_distance_hessian(),
 /// plus the rotation's second-order term) and learns from each step. When
 /// it does not lower the true RMS distance, the Newton step with a fresh
-/// Hessian, then the Gauss-Newton (point-to-plane) step, then the
+/// Hessian (its eigenvalues replaced by their absolute values where it is
+/// indefinite: a nearly flat shape over a flat target), then the Gauss-Newton (point-to-plane) step, then the
 /// point-to-point step (rigid_align() of the points to their closest points,
 /// which never increases it). A round is accepted only when the RMS
 /// decreases, so the RMS never increases and the result is never worse than

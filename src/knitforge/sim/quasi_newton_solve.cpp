@@ -65,6 +65,13 @@ void factor_at(const Eigen::VectorXd& x, const std::vector<char>& fixed, const E
 
 }  // namespace
 
+double next_trial_step(double alpha, double energy, double slope, double trial_energy) {
+  const double curvature = trial_energy - energy - slope * alpha;
+  const double next = std::isfinite(trial_energy) && curvature > 0 ? -slope * alpha * alpha / (2 * curvature)
+                                                                    : 0.5 * alpha;
+  return std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+}
+
 QuasiNewtonResult quasi_newton_solve(const Eigen::VectorXd& x0, const std::vector<char>& fixed,
                                      const EvaluateEnergy& evaluate, const EvaluateEnergy& matrix,
                                      const MaxStep& max_step, const QuasiNewtonOptions& o, SparseSolver& solver) {
@@ -145,7 +152,7 @@ QuasiNewtonResult quasi_newton_solve(const Eigen::VectorXd& x0, const std::vecto
       res.seconds.max_step += t.seconds();
       t.reset();
       double alpha = alpha_max;
-      for (int ls = 0; ls < o.max_line_search_steps && alpha > 0; ++ls, alpha *= 0.5) {
+      for (int ls = 0; ls < o.max_line_search_steps && alpha > 0; ++ls) {
         Eigen::VectorXd trial = res.x + alpha * p;
         EnergyEval e = evaluate(trial, Derivatives::Gradient);
         ++res.evaluations;
@@ -156,6 +163,7 @@ QuasiNewtonResult quasi_newton_solve(const Eigen::VectorXd& x0, const std::vecto
           accepted = true;
           break;
         }
+        alpha = next_trial_step(alpha, energy, slope, e.value);
       }
       res.seconds.line_search += t.seconds();
     }
