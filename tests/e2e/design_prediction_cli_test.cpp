@@ -92,6 +92,11 @@ TEST_F(DesignPrediction, FlattenReportsTheConvergedPredictionAsPredictDoes) {
   EXPECT_EQ(data["predicted"]["corners"].size(), data["stitch_mesh"]["corners"].size());
   EXPECT_EQ(data["predicted"]["scalars"]["shape_error"].size(), data["predicted"]["corners"].size() / 4);
   EXPECT_NE(data["predicted"]["positions"], data["stitch_mesh"]["positions"]);
+  // Again into the same directory without a prediction: no predicted.ply of the earlier run, no layer.
+  const CliRun again = run(std::string(kFlatten) + " --no-predict -o " + path("d"));
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_FALSE(fs::exists(path("d/predicted.ply")));
+  EXPECT_FALSE(report_page_data(path("d/report.html")).contains("predicted"));
 }
 
 TEST_F(DesignPrediction, FlattenSaysWhenThePredictionDidNotConverge) {
