@@ -273,8 +273,9 @@ struct DesignPredictOptions {
 void add_design_predict_options(CLI::App& cmd, DesignPredictOptions& options);
 /// The "prediction" section of report.json (null when it did not run, with
 /// a note saying why); writes OUTDIR/predicted.ply (aligned to the target)
-/// when it converged. An unconverged prediction reports converged = false
-/// and no shape error. `summary` receives the CLI line.
+/// when it converged, and removes one of an earlier run otherwise (the report
+/// page draws predicted.ply). An unconverged prediction reports converged =
+/// false and no shape error. `summary` receives the CLI line.
 nlohmann::json design_prediction(const DesignPredictOptions& options, const std::string& outdir,
                                  const StitchMesh& designed, const KnitParams& params, const TriMesh& target,
                                  bool ascii, std::string& summary);

@@ -30,6 +30,10 @@ nlohmann::json design_prediction(const DesignPredictOptions& options, const std:
                                  const StitchMesh& designed, const KnitParams& params, const TriMesh& target,
                                  bool ascii, std::string& summary) {
   summary.clear();
+  // A predicted.ply of an earlier run into this directory would be shown by
+  // the report page as this design's: only a converged prediction of this run writes one.
+  std::error_code ec;
+  std::filesystem::remove(std::filesystem::path(outdir) / "predicted.ply", ec);
   if (options.skip) return nullptr;
   const int n = designed.num_stitches();
   if (n == 0) return nullptr;

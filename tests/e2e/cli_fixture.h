@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace knitforge_e2e {
 
 namespace fs = std::filesystem;
@@ -25,6 +27,17 @@ inline std::string slurp(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+/// The data a report page embeds (report_data(), docs/report.md): the JSON
+/// of its `knitforge-data` script element; null when there is none.
+inline nlohmann::json report_page_data(const fs::path& html_file) {
+  const std::string html = slurp(html_file);
+  const std::string open = R"(<script type="application/json" id="knitforge-data">)";
+  const size_t begin = html.find(open);
+  if (begin == std::string::npos) return nullptr;
+  const size_t from = begin + open.size();
+  return nlohmann::json::parse(html.substr(from, html.find("</script>", from) - from));
 }
 
 class Cli : public ::testing::Test {

@@ -3,6 +3,7 @@
 // bad scenes and runs over the work limit are refused with one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
@@ -85,6 +86,33 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   const json rep = json::parse(slurp(path("out/report.json")));
   EXPECT_EQ(rep["command"], "cloth");
   EXPECT_FALSE(rep.contains("fields"));  // the page's metrics stay small
+  // The page colours the garment by cloth.json's stress and sliding of every
+  // frame: the embedded values are the run's, to within half a step.
+  const json data = report_page_data(path("out/report.html"));
+  const json& fields = data["animation"]["layers"]["relaxed"]["fields"];
+  ASSERT_EQ(data["animation"]["layers"]["relaxed"]["frames"].size(), 4u);
+  for (const char* key : {"stress_kpa", "sliding_mm"}) {
+    const json& f = fields[key];
+    ASSERT_EQ(f["frames"].size(), 4u) << key;
+    const double step = f["step"].get<double>();
+    double top = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      ASSERT_EQ(f["frames"][k].size(), c["fields"][k][key].size()) << key;
+      for (size_t e = 0; e < f["frames"][k].size(); ++e) {
+        const double v = c["fields"][k][key][e].get<double>();
+        top = std::max(top, v);
+        ASSERT_NEAR(f["frames"][k][e].get<int64_t>() * step, v, 0.5 * step + 1e-9) << key << " frame " << k;
+      }
+    }
+    EXPECT_NEAR(f["range"][1].get<double>(), top, 1e-4 * top) << key;
+    EXPECT_LE(top / step, 1000.0) << key;
+    if (top > 0) {
+      EXPECT_GT(top / step, 100.0) << key;  // 100 to 1,000 levels
+    }
+  }
+  EXPECT_EQ(fields["stress_kpa"]["per"], "triangle");
+  EXPECT_EQ(fields["stress_kpa"]["measure"], c["result"]["stress_measure"]);
+  EXPECT_EQ(fields["sliding_mm"]["per"], "vertex");
 
   // The animation.glb drives a second run as its body (glTF input, morph
   // targets): the run takes the animation's length (3 frames at 20 Hz) and

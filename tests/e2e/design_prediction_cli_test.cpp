@@ -80,19 +80,32 @@ TEST_F(DesignPrediction, ShortRowSaysWhenThePredictionDidNotConverge) { expect_u
 
 TEST_F(DesignPrediction, FlattenReportsTheConvergedPredictionAsPredictDoes) {
   expect_converged_as_predict(kFlatten);
-  // The report page embeds report.json, the converged prediction included.
-  const std::string html = slurp(path("d/report.html"));
-  const std::string open = "<script type=\"application/json\" id=\"knitforge-data\">";
-  const size_t begin = html.find(open);
-  ASSERT_NE(begin, std::string::npos);
-  const size_t end = html.find("</script>", begin);
-  const nlohmann::json data = nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+  // The report page embeds report.json, the converged prediction included,
+  // and draws predicted.ply as its own layer (a stitch mesh with its shape error).
+  const nlohmann::json data = report_page_data(path("d/report.html"));
+  ASSERT_TRUE(data.is_object());
   EXPECT_TRUE(data["metrics"]["prediction"]["converged"].get<bool>());
   EXPECT_EQ(data["metrics"]["prediction"]["shape_error_mm"],
             nlohmann::json::parse(slurp(path("d/report.json")))["prediction"]["shape_error_mm"]);
+  ASSERT_TRUE(data.contains("predicted"));
+  EXPECT_EQ(data["predicted"]["kind"], "stitch_mesh");
+  EXPECT_EQ(data["predicted"]["corners"].size(), data["stitch_mesh"]["corners"].size());
+  EXPECT_EQ(data["predicted"]["scalars"]["shape_error"].size(), data["predicted"]["corners"].size() / 4);
+  EXPECT_NE(data["predicted"]["positions"], data["stitch_mesh"]["positions"]);
+  // Again into the same directory without a prediction: no predicted.ply of the earlier run, no layer.
+  const CliRun again = run(std::string(kFlatten) + " --no-predict -o " + path("d"));
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_FALSE(fs::exists(path("d/predicted.ply")));
+  EXPECT_FALSE(report_page_data(path("d/report.html")).contains("predicted"));
 }
 
-TEST_F(DesignPrediction, FlattenSaysWhenThePredictionDidNotConverge) { expect_unconverged_and_skipped(kFlatten); }
+TEST_F(DesignPrediction, FlattenSaysWhenThePredictionDidNotConverge) {
+  expect_unconverged_and_skipped(kFlatten);
+  // No predicted.ply, no predicted layer on the page.
+  const nlohmann::json data = report_page_data(path("d/report.html"));
+  ASSERT_TRUE(data.is_object());
+  EXPECT_FALSE(data.contains("predicted"));
+}
 
 TEST_F(DesignPrediction, ShortColumnReportsTheConvergedPredictionAsPredictDoes) {
   expect_converged_as_predict(kShortColumn);

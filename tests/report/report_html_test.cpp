@@ -179,20 +179,24 @@ TEST(ReportHtml, RelaxedIsAStitchMeshOrAPlainMesh) {
   EXPECT_EQ(d["relaxed"]["type"], json({0, 4}));
 }
 
-// A cloth run's animation.glb moves the relaxed layer (mesh "garment") and
-// the target layer (mesh "body"); long animations are thinned, keeping the last frame.
-TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
-  TempDir dir;
+/// A cloth run's outputs for the page, by hand: animation.glb (a garment of
+/// one triangle rising 1 mm a frame, a body of two), relaxed.ply, target.ply
+/// and cloth.json with per-frame stress (per triangle) and sliding (per vertex).
+void write_cloth_run(const TempDir& dir, int frames) {
   std::vector<AnimatedMesh> meshes(2);
   meshes[0].name = "garment";
   meshes[0].faces = {{0, 1, 2}};
   meshes[1].name = "body";
   meshes[1].faces = {{0, 1, 2}, {0, 2, 3}};
   std::vector<double> times;
-  for (int k = 0; k < 5; ++k) {
+  json fields = json::array();
+  for (int k = 0; k < frames; ++k) {
     times.push_back(0.1 * k);
     meshes[0].frames.push_back({{0, 0, 1.0 * k}, {1, 0, 0}, {0, 1, 0}});
     meshes[1].frames.push_back({{0, 0, -1}, {2, 0, -1}, {2, 2, -1.0 - k}, {0, 2, -1}});
+    fields.push_back({{"frame", k},
+                      {"stress_kpa", {12.34 * k}},
+                      {"sliding_mm", {0.0, 0.5 * k, k == 2 ? json(nullptr) : json(0.013 * k)}}});
   }
   write_animation_glb(dir.path("animation.glb"), meshes, times);
   TriMesh g, b;
@@ -202,6 +206,20 @@ TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
   b.vertices = meshes[1].frames.back();
   write_mesh(dir.path("relaxed.ply"), g);
   write_mesh(dir.path("target.ply"), b);
+  dir.write("cloth.json", json{{"command", "cloth"},
+                               {"result",
+                                {{"stress_measure", "largest principal Cauchy stress"},
+                                 {"sliding_measure", "distance on the body"}}},
+                               {"fields", fields}}
+                              .dump());
+}
+
+// A cloth run's animation.glb moves the relaxed layer (mesh "garment") and
+// the target layer (mesh "body"); long animations are thinned, keeping the last frame.
+TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
+  TempDir dir;
+  write_cloth_run(dir, 5);
+  std::filesystem::remove(dir.path("cloth.json"));
   json d = report_data(dir.path(""));
   ASSERT_TRUE(d.contains("animation"));
   const json& r = d["animation"]["layers"]["relaxed"];
@@ -210,15 +228,17 @@ TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
   EXPECT_NEAR(r["times"][4].get<double>(), 0.4, 1e-6);
   EXPECT_EQ(d["animation"]["layers"]["target"]["frames"][2][8], -300);
   ReportHtmlOptions o;
-  o.max_animation_values = 20;  // two frames of the body (12 values each)
+  o.max_animation_values = 42;  // two frames of the garment and the body (9 + 12 values each)
   d = report_data(dir.path(""), o);
   const json& t = d["animation"]["layers"]["target"];
-  ASSERT_LE(t["frames"].size() * 12, 24u);
+  ASSERT_EQ(t["frames"].size(), 2u);
+  EXPECT_EQ(d["animation"]["layers"]["relaxed"]["times"], t["times"]);
   EXPECT_EQ(t["frames"].back()[8], -500);  // the last frame kept
   EXPECT_NE(d["notes"].dump().find("shown every"), std::string::npos);
   // A layer with other vertices is not animated (a note says so).
-  b.vertices.pop_back();
-  b.faces.pop_back();
+  TriMesh b;
+  b.vertices = {{0, 0, -1}, {2, 0, -1}, {2, 2, -6}};
+  b.faces = {{0, 1, 2}};
   write_mesh(dir.path("target.ply"), b);
   d = report_data(dir.path(""));
   EXPECT_FALSE(d["animation"]["layers"].contains("target"));
@@ -228,6 +248,100 @@ TEST(ReportHtml, AnimationGlbMovesTheGarmentAndTheBody) {
   d = report_data(dir.path(""));
   EXPECT_FALSE(d.contains("animation"));
   EXPECT_EQ(d["notes"].dump().find("animation"), std::string::npos);
+}
+
+// cloth.json's per-frame stress and sliding colour the garment on the page:
+// integers in units of a power of ten (at most 1,000 levels), the colour
+// scale of all frames, the measure; thinned frames are those of the geometry.
+TEST(ReportHtml, ClothFieldsPerFrameFollowTheGarmentsFrames) {
+  TempDir dir;
+  write_cloth_run(dir, 7);
+  json d = report_data(dir.path(""));
+  const json& r = d["animation"]["layers"]["relaxed"];
+  ASSERT_TRUE(r.contains("fields")) << d["notes"].dump();
+  EXPECT_FALSE(d["animation"]["layers"]["target"].contains("fields"));
+  EXPECT_NE(d["files"].dump().find("cloth.json"), std::string::npos);
+  const json& s = r["fields"]["stress_kpa"];
+  EXPECT_EQ(s["unit"], "kPa");
+  EXPECT_EQ(s["per"], "triangle");
+  EXPECT_EQ(s["measure"], "largest principal Cauchy stress");
+  EXPECT_DOUBLE_EQ(s["step"].get<double>(), 0.1);  // largest 74.04 kPa: 0.1 kPa steps
+  EXPECT_EQ(s["range"], json({0.0, 74.04}));       // 5 significant digits
+  ASSERT_EQ(s["frames"].size(), 7u);
+  for (int k = 0; k < 7; ++k) {
+    ASSERT_EQ(s["frames"][k].size(), 1u);
+    EXPECT_NEAR(s["frames"][k][0].get<int>() * 0.1, 12.34 * k, 0.05) << k;
+  }
+  const json& l = r["fields"]["sliding_mm"];
+  EXPECT_EQ(l["per"], "vertex");
+  EXPECT_EQ(l["unit"], "mm");
+  EXPECT_DOUBLE_EQ(l["step"].get<double>(), 0.01);  // largest 3 mm
+  EXPECT_EQ(l["frames"][4], json({0, 200, 5}));     // 0.052 mm -> 5 x 0.01
+  EXPECT_TRUE(l["frames"][2][2].is_null());         // null stays null
+
+  // Thinned: every layer and field keeps the same frames, the last one too.
+  ReportHtmlOptions o;
+  o.max_animation_values = 3 * (9 + 12 + 1 + 3);  // three frames of everything
+  d = report_data(dir.path(""), o);
+  const json& t = d["animation"]["layers"];
+  const size_t kept = t["relaxed"]["frames"].size();
+  EXPECT_LE(kept, 3u);
+  EXPECT_GE(kept, 2u);
+  EXPECT_EQ(t["target"]["times"], t["relaxed"]["times"]);
+  ASSERT_EQ(t["relaxed"]["fields"]["stress_kpa"]["frames"].size(), kept);
+  ASSERT_EQ(t["relaxed"]["fields"]["sliding_mm"]["frames"].size(), kept);
+  for (size_t i = 0; i < kept; ++i) {
+    const int frame = t["relaxed"]["frames"][i][2].get<int>() / 100;  // the garment rises 1 mm a frame
+    EXPECT_NEAR(t["relaxed"]["times"][i].get<double>(), 0.1 * frame, 1e-6);
+    EXPECT_EQ(t["target"]["frames"][i][8].get<int>(), -100 - 100 * frame);
+    EXPECT_NEAR(t["relaxed"]["fields"]["stress_kpa"]["frames"][i][0].get<int>() * 0.1, 12.34 * frame, 0.05);
+    EXPECT_EQ(t["relaxed"]["fields"]["sliding_mm"]["frames"][i][1].get<int>(), 50 * frame);
+  }
+  EXPECT_EQ(t["relaxed"]["frames"].back()[2], 600);                    // the last frame kept
+  EXPECT_EQ(t["relaxed"]["fields"]["stress_kpa"]["range"][1], 74.04);  // the scale of all frames
+  EXPECT_NE(d["notes"].dump().find("shown every"), std::string::npos);
+
+  // Fields that do not fit the garment or the frames are left out with a note.
+  json c = json::parse(dir.read("cloth.json"));
+  c["fields"][3]["stress_kpa"].push_back(1.0);
+  dir.write("cloth.json", c.dump());
+  d = report_data(dir.path(""));
+  EXPECT_FALSE(d["animation"]["layers"]["relaxed"]["fields"].contains("stress_kpa"));
+  EXPECT_TRUE(d["animation"]["layers"]["relaxed"]["fields"].contains("sliding_mm"));
+  EXPECT_NE(d["notes"].dump().find("stress_kpa is not one value per triangle"), std::string::npos);
+  c["fields"].erase(6);
+  dir.write("cloth.json", c.dump());
+  d = report_data(dir.path(""));
+  EXPECT_FALSE(d["animation"]["layers"]["relaxed"].contains("fields"));
+  EXPECT_NE(d["notes"].dump().find("6 per-frame fields for the 7 frames"), std::string::npos);
+  // Without cloth.json: the geometry moves, uncoloured.
+  std::filesystem::remove(dir.path("cloth.json"));
+  d = report_data(dir.path(""));
+  EXPECT_EQ(d["animation"]["layers"]["relaxed"]["frames"].size(), 7u);
+  EXPECT_FALSE(d["animation"]["layers"]["relaxed"].contains("fields"));
+}
+
+// predicted.ply (a design's converged predicted shape) is its own layer,
+// present only when the file is.
+TEST(ReportHtml, PredictedShapeIsALayerWhenPresent) {
+  TempDir dir;
+  write_stitch_mesh_ply(dir.path("stitch_mesh.ply"), two_stitches());
+  json d = report_data(dir.path(""));
+  EXPECT_FALSE(d.contains("predicted"));
+  EXPECT_NE(d["notes"].dump().find("predicted.ply"), std::string::npos);  // listed as not there
+  StitchMesh p = two_stitches();
+  p.vertices[4] = Vec3(1.756, 5.0, 0.5);
+  StitchMeshPlyOptions ply;
+  ply.scalars = {{"shape_error", {0.25, 1.5}}};
+  write_stitch_mesh_ply(dir.path("predicted.ply"), p, ply);
+  d = report_data(dir.path(""));
+  ASSERT_TRUE(d.contains("predicted"));
+  EXPECT_EQ(d["predicted"]["kind"], "stitch_mesh");
+  EXPECT_EQ(d["predicted"]["positions"][14], 50);
+  EXPECT_EQ(d["predicted"]["scalars"]["shape_error"], json({0.25, 1.5}));
+  EXPECT_EQ(d["stitch_mesh"]["positions"][14], 0);
+  EXPECT_NE(d["files"].dump().find("predicted.ply"), std::string::npos);
+  EXPECT_EQ(d["notes"].dump().find("predicted.ply"), std::string::npos);
 }
 
 TEST(ReportHtml, KnitoutStatistics) {

@@ -9,8 +9,10 @@
 // the colour buttons and layer toggles change its pixels, the map canvas
 // shows and hovering a cell gives its course / wale / type, the metrics and
 // knitout panels are filled, and the page logs no error. Screenshots go to
-// <artifacts dir>/web_report/. Then a small `cloth` run: the frame slider and
-// the play button move the sleeve and the arm (animation.glb).
+// <artifacts dir>/web_report/. Then a design with predicted.ply: its layer.
+// Then a small `cloth` run: the frame slider and
+// the play button move the sleeve and the arm (animation.glb); the sleeve is
+// coloured by the stress of the frame shown (cloth.json), or by sliding.
 import { createRequire } from "node:module";
 import { execFileSync } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
@@ -221,6 +223,29 @@ try {
   check(hrefs.includes("knitout.k") && hrefs.includes("knitting_map.csv"), "download links for the program and the map", hrefs.join(", "));
   check(hrefs.every((h) => existsSync(path.join(design2, decodeURI(h)))), "every download link points at a file of the run");
   await page.screenshot({ path: path.join(art, "summary.png") });
+  check(!(await page.$('input[data-layer="predicted"]')), "no predicted layer without predicted.ply");
+
+  // A design with its converged predicted shape (predicted.ply): a layer of
+  // its own, hidden at start; shown alone, the legend is its shape error.
+  const design3 = path.join(art, "design-predicted");
+  run("shortrow", "disk", "--stitch", "5x4", "--no-knitout", "-o", design3);
+  check(existsSync(path.join(design3, "predicted.ply")), "the design wrote predicted.ply");
+  await page.goto(pathToFileURL(path.join(design3, "report.html")).href);
+  await page.waitForFunction(() => window.knitforgeReport && (window.knitforgeReport.ready || window.knitforgeReport.error), null, { timeout: 60000 });
+  const pred = page.locator('input[data-layer="predicted"]');
+  check((await pred.count()) === 1 && !(await pred.isChecked()), "a predicted layer, hidden at start beside the stitch mesh");
+  await page.click('[data-colour="scalar:shape_error"]');
+  await page.uncheck('input[data-layer="stitch_mesh"]');
+  await page.uncheck('input[data-layer="relaxed"]');
+  await settle();
+  const shotNone = await view.screenshot();
+  await pred.check();
+  await settle();
+  const shotPred = await view.screenshot({ path: path.join(art, "predicted.png") });
+  const d7 = await analyse(shotNone, shotPred);
+  check(d7.differ > 0.01 * d7.pixels, "ticking it draws the predicted shape", `${d7.differ} pixels differ`);
+  const predLegend = await page.textContent("#legend-3d");
+  check(/shape error \(predicted\)/.test(predLegend), "the legend gives the predicted shape's own shape error", predLegend);
 
   // A cloth run (a small built-in sleeve): the page plays animation.glb; the
   // frame slider moves the garment and the arm. The page is tested, not the
@@ -252,6 +277,63 @@ try {
   await page.click('[data-animation="play"]');
   await page.waitForFunction(() => window.knitforgeReport.view3d.animation.frame === 3, null, { timeout: 10000 });
   check(true, "play runs to the last frame");
+
+  // The garment is coloured by the stress of the frame shown (cloth.json's
+  // fields), with a legend; a button switches to sliding.
+  const clothJson = JSON.parse(readFileSync(path.join(cloth, "cloth.json"), "utf8"));
+  const shown = () => page.evaluate(() => {
+    const v = window.knitforgeReport.view3d;
+    const data = JSON.parse(document.getElementById("knitforge-data").textContent);
+    const tri = data.relaxed.triangles;
+    const out = { field: v.fields.current(), frame: v.animation.frame, values: [], colours: [], triangles: tri };
+    for (let c = 0; c < tri.length; ++c) { out.values.push(v.fields.value(c)); out.colours.push(v.fields.colour(c)); }
+    const f = out.field && data.animation.layers.relaxed.fields[out.field];
+    out.step = f ? f.step : null;
+    return out;
+  });
+  // Page values against the run's, and the colours: viridis over [0, largest of all frames].
+  const agrees = (s, key) => {
+    const ref = clothJson.fields[s.frame][key];
+    let worst = 0, hi = 0;
+    for (const fr of clothJson.fields) for (const x of fr[key]) hi = Math.max(hi, x);
+    let top = -1, low = -1;
+    for (let c = 0; c < s.values.length; ++c) {
+      const want = key === "stress_kpa" ? ref[Math.floor(c / 3)] : ref[s.triangles[c]];
+      worst = Math.max(worst, Math.abs(s.values[c] - want));
+      if (top < 0 || s.values[c] > s.values[top]) top = c;
+      if (low < 0 || s.values[c] < s.values[low]) low = c;
+    }
+    // viridis(t) at the two ends: t = value / hi (0: dark purple, 1: yellow).
+    const frac = (c) => (hi > 0 ? s.values[c] / hi : 0);
+    const yellowish = (rgb) => rgb[0] > 0.5 && rgb[1] > 0.5 && rgb[2] < 0.5;
+    const purplish = (rgb) => rgb[0] < 0.35 && rgb[1] < 0.2 && rgb[2] > 0.25;
+    return { worst, ok: worst <= 0.5 * s.step + 1e-9,
+      ends: (frac(top) < 0.9 || yellowish(s.colours[top])) && (frac(low) > 0.05 || purplish(s.colours[low])),
+      detail: `worst ${worst} (step ${s.step}); top ${s.values[top]} of ${hi} -> ${s.colours[top]}; low ${s.values[low]} -> ${s.colours[low]}` };
+  };
+  let st = await shown();
+  check(st.field === "stress_kpa" && st.frame === 3, "the garment opens coloured by the stress of the last frame", `${st.field} at ${st.frame}`);
+  let a = agrees(st, "stress_kpa");
+  check(a.ok && a.ends, "its colours are cloth.json's stress of that frame on viridis over all frames", a.detail);
+  const stressLegend = await page.textContent("#legend-3d");
+  check(/stress \(kPa\)/.test(stressLegend) && /Cauchy/.test(stressLegend), "the legend names the stress, its unit and its measure", stressLegend);
+  await page.$eval('[data-animation="frame"]', (s) => { s.value = "1"; s.dispatchEvent(new Event("input")); });
+  st = await shown();
+  a = agrees(st, "stress_kpa");
+  check(st.frame === 1 && a.ok && a.ends, "moving the slider shows the stress of the new frame", a.detail);
+  await settle();
+  const shotStress = await view.screenshot({ path: path.join(art, "cloth-stress.png") });
+  await page.click('[data-field="sliding_mm"]');
+  st = await shown();
+  a = agrees(st, "sliding_mm");
+  check(st.field === "sliding_mm" && a.ok && a.ends, "the sliding button colours by cloth.json's sliding per vertex", a.detail);
+  check(/sliding \(mm\)/.test(await page.textContent("#legend-3d")), "the legend says sliding (mm)");
+  await settle();
+  const shotSliding = await view.screenshot({ path: path.join(art, "cloth-sliding.png") });
+  const d6 = await analyse(shotStress, shotSliding);
+  check(d6.differ > 0.002 * d6.pixels, "stress and sliding colour the garment differently", `${d6.differ} pixels differ`);
+  await page.click('[data-field=""]');
+  check((await shown()).field === null && (await page.textContent("#legend-3d")) === "", "plain: no field, no legend");
 
   check(errors.length === 0, "no console errors, page errors or network requests", errors.join(" | "));
 } finally {

@@ -53,7 +53,7 @@ function build(data) {
     sec.append(summary);
     main.append(sec);
   }
-  const has3d = data.target || data.stitch_mesh || data.relaxed || data.yarn || data.wales;
+  const has3d = data.target || data.stitch_mesh || data.relaxed || data.predicted || data.yarn || data.wales;
   if (has3d) {
     const sec = panel("3D view", "panel-3d", !data.map);
     const layers = el("div", { class: "group", id: "layers" }, el("span", {}, "show"));

@@ -1,4 +1,4 @@
-// The 3D view: target surface, stitch mesh and relaxed shape (coloured by a
+// The 3D view: target surface, stitch mesh, relaxed and predicted shapes (coloured by a
 // per-stitch quantity), yarn (tubes, or lines above a size limit) and wale
 // curves, with orbit controls. Renders on demand (only when something changes).
 import * as THREE from "three";
@@ -76,6 +76,65 @@ function buildTriMesh(m, scale) {
   g.setIndex(n > 65535 ? new THREE.Uint32BufferAttribute(m.triangles, 1) : new THREE.Uint16BufferAttribute(m.triangles, 1));
   g.computeVertexNormals();
   return g;
+}
+
+/// A triangle mesh as separate triangles (three corners each, no index), so
+/// that a triangle can have a colour of its own: the garment of a cloth run
+/// coloured by a per-frame field (per triangle or per vertex).
+function buildFieldMesh(m, scale) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(m.triangles.length * 3), 3));
+  g.setAttribute("color", new THREE.BufferAttribute(new Float32Array(m.triangles.length * 3), 3));
+  setCornerPositions(g, m.triangles, m.positions, scale);
+  return g;
+}
+
+/// Writes vertex positions (integers in units of `scale`) to the corners of
+/// a geometry of buildFieldMesh().
+function setCornerPositions(geometry, triangles, ints, scale) {
+  const attr = geometry.getAttribute("position");
+  const arr = attr.array;
+  for (let c = 0; c < triangles.length; ++c) {
+    const v = 3 * triangles[c];
+    arr[3 * c] = ints[v] * scale;
+    arr[3 * c + 1] = ints[v + 1] * scale;
+    arr[3 * c + 2] = ints[v + 2] * scale;
+  }
+  attr.needsUpdate = true;
+  geometry.computeVertexNormals();
+}
+
+/// The value of a per-frame field (report_data()'s animation fields) at frame
+/// k for corner c of the triangles (null where there is none).
+export function fieldValue(field, k, triangles, c) {
+  const f = field.frames[Math.min(k, field.frames.length - 1)];
+  const v = f[field.per === "triangle" ? Math.floor(c / 3) : triangles[c]];
+  return v === null || v === undefined ? null : v * field.step;
+}
+
+/// The legend of a per-frame field: viridis over its range of all frames.
+export function fieldLegend(field) {
+  return {
+    kind: "ramp", title: `${field.label} (${field.unit})`, lo: field.range[0], hi: field.range[1],
+    note: field.measure || "",
+  };
+}
+
+/// Colours (rgb 0..1, three per corner) of a field at frame k; corners
+/// without a value are grey; `field` null gives the garment's plain colour.
+function setFieldColours(geometry, triangles, field, k) {
+  const attr = geometry.getAttribute("color");
+  const arr = attr.array;
+  const lo = field ? field.range[0] : 0;
+  const span = field && field.range[1] > lo ? field.range[1] - lo : 1;
+  for (let c = 0; c < triangles.length; ++c) {
+    const v = field ? fieldValue(field, k, triangles, c) : null;
+    const rgb = !field ? [159, 197, 168] : v === null ? [200, 200, 200] : viridis((v - lo) / span);
+    arr[3 * c] = rgb[0] / 255;
+    arr[3 * c + 1] = rgb[1] / 255;
+    arr[3 * c + 2] = rgb[2] / 255;
+  }
+  attr.needsUpdate = true;
 }
 
 /// The colour modes a stitch mesh offers: id, label, and a function giving
@@ -158,6 +217,13 @@ export function renderLegend(el, legend) {
     ramp.style.background = viridisCss();
     span.append(`${legend.title}: ${fmt(legend.lo)}`, ramp, fmt(legend.hi));
     el.append(span);
+    if (legend.note) {
+      const note = document.createElement("span");
+      note.className = "note";
+      note.dataset.legend = "measure";
+      note.textContent = legend.note;
+      el.append(note);
+    }
   }
 }
 
@@ -267,7 +333,8 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
 
   const sm = data.stitch_mesh;
   const relaxedStitch = data.relaxed && data.relaxed.kind === "stitch_mesh" ? data.relaxed : null;
-  const mainSm = sm || relaxedStitch;
+  const predictedStitch = data.predicted && data.predicted.kind === "stitch_mesh" ? data.predicted : null;
+  const mainSm = sm || relaxedStitch || predictedStitch;
 
   // Outlines are built when first shown (they are hidden on large meshes).
   const showEdges = (layer, on) => {
@@ -289,7 +356,7 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     const mesh = new THREE.Mesh(built.geometry, mat);
     group.add(mesh);
     addLayer(id, label, group, visible);
-    const layer = { sm: s, built, mesh, group, edges: null };
+    const layer = { sm: s, label, built, mesh, group, edges: null, legend: null, hasMode: false };
     stitchLayers.push(layer);
     if (built.numStitches <= EDGE_STITCH_LIMIT) showEdges(layer, true);
   };
@@ -303,11 +370,29 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     addLayer("target", cloth ? "body" : "target surface", new THREE.Mesh(buildTriMesh(data.target, scale), mat), true);
   }
   if (sm) makeStitchLayer(sm, "stitch_mesh", "stitch mesh", true);
+  // The garment of a cloth run with its per-frame fields (stress, sliding).
+  const animFields = data.relaxed && data.relaxed.kind === "mesh" && data.animation && data.animation.layers &&
+    data.animation.layers.relaxed && data.animation.layers.relaxed.fields;
+  let fieldMesh = null;
   if (data.relaxed) {
     if (relaxedStitch) makeStitchLayer(relaxedStitch, "relaxed", "relaxed", !sm);
-    else {
+    else if (animFields && Object.keys(animFields).length) {
+      const mat = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
+      fieldMesh = new THREE.Mesh(buildFieldMesh(data.relaxed, scale), mat);
+      addLayer("relaxed", cloth ? "garment" : "relaxed", fieldMesh, !sm);
+    } else {
       const mat = new THREE.MeshLambertMaterial({ color: 0x9fc5a8, side: THREE.DoubleSide });
       addLayer("relaxed", cloth ? "garment" : "relaxed", new THREE.Mesh(buildTriMesh(data.relaxed, scale), mat), !sm);
+    }
+  }
+  // The converged predicted shape of a design (predicted.ply), hidden at
+  // start when the stitch mesh or the relaxed shape is shown.
+  if (data.predicted) {
+    const shown = !sm && !data.relaxed;
+    if (predictedStitch) makeStitchLayer(predictedStitch, "predicted", "predicted", shown);
+    else {
+      const mat = new THREE.MeshLambertMaterial({ color: 0xe0b07a, side: THREE.DoubleSide });
+      addLayer("predicted", "predicted", new THREE.Mesh(buildTriMesh(data.predicted, scale), mat), shown);
     }
   }
   let yarnInfo = null;
@@ -386,6 +471,7 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
         delete o.userData.build;
       }
       o.visible = cb.checked;
+      if (currentMode && stitchLayers.some((l) => l.group === o)) renderLegend(legendEl, stitchLegend());
       render();
     });
     label.append(cb, layer.label);
@@ -399,9 +485,16 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
   if (anim) {
     for (const l of layers) {
       const a = anim[l.id];
-      if (a && l.object.isMesh && a.frames.length) moving.push({ geometry: l.object.geometry, a });
+      if (a && l.object.isMesh && a.frames.length) moving.push({ object: l.object, geometry: l.object.geometry, a });
     }
   }
+  // The field the garment is coloured by (null: plain) and the frame shown.
+  let field = null, fieldFrame = anim && anim.relaxed ? anim.relaxed.frames.length - 1 : 0;
+  const colourGarment = () => {
+    if (!fieldMesh) return;
+    setFieldColours(fieldMesh.geometry, data.relaxed.triangles, field ? animFields[field] : null, fieldFrame);
+    render();
+  };
   if (moving.length) {
     const times = moving[0].a.times;
     const n = times.length;
@@ -424,12 +517,18 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
       k = Math.max(0, Math.min(n - 1, k | 0));
       for (const m of moving) {
         const f = m.a.frames[Math.min(k, m.a.frames.length - 1)];
+        if (m.object === fieldMesh) {
+          setCornerPositions(m.geometry, data.relaxed.triangles, f, scale);
+          continue;
+        }
         const attr = m.geometry.getAttribute("position");
         const arr = attr.array;
         for (let i = 0; i < f.length; ++i) arr[i] = f[i] * scale;
         attr.needsUpdate = true;
         m.geometry.computeVertexNormals();
       }
+      fieldFrame = k;
+      colourGarment();
       slider.value = String(k);
       label.textContent = `frame ${k} / ${n - 1}, ${times[k].toFixed(3)} s`;
       animation.frame = k;
@@ -476,15 +575,23 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
     layersEl.append(label);
   }
 
-  // Colour modes (of the stitch mesh; the relaxed stitch mesh follows when it has the field).
+  // Colour modes (of the stitch mesh; the relaxed and predicted stitch meshes
+  // follow when they have the field, each on its own range). The legend is
+  // that of the first layer shown that has the mode (named when it is not
+  // the stitch mesh), else the stitch mesh's.
   let currentMode = null;
+  function stitchLegend() {
+    const l = stitchLayers.find((x) => x.group.visible && x.hasMode) || stitchLayers.find((x) => x.sm === mainSm);
+    if (!l || !l.legend) return null;
+    return l.sm === mainSm || l.legend.kind !== "ramp" ? l.legend : { ...l.legend, title: `${l.legend.title} (${l.label})` };
+  }
   const setMode = (mode) => {
     currentMode = mode;
-    let legend = null;
     for (const l of stitchLayers) {
       const ok = colourModes(l.sm).some((m) => m.id === mode);
       const { rgb, legend: lg } = stitchColours(l.sm, ok ? mode : "type");
-      if (l.sm === mainSm) legend = lg;
+      l.legend = lg;
+      l.hasMode = ok;
       const col = l.built.geometry.getAttribute("color");
       const arr = col.array;
       const owner = l.built.owner;
@@ -497,7 +604,7 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
       col.needsUpdate = true;
     }
     for (const b of modesEl.querySelectorAll("button")) b.classList.toggle("active", b.dataset.colour === mode);
-    renderLegend(legendEl, legend);
+    renderLegend(legendEl, stitchLegend());
     render();
   };
   if (mainSm) {
@@ -512,6 +619,30 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
       b.addEventListener("click", () => setMode(m.id));
       modesEl.append(b);
     }
+  }
+
+  // Colour modes of the cloth garment: its per-frame fields, or plain.
+  const setField = (name) => {
+    field = name && animFields && animFields[name] ? name : null;
+    for (const b of modesEl.querySelectorAll("button[data-field]")) b.classList.toggle("active", b.dataset.field === (field || ""));
+    renderLegend(legendEl, field ? fieldLegend(animFields[field]) : null);
+    colourGarment();
+  };
+  if (fieldMesh) {
+    const span = document.createElement("span");
+    span.textContent = "colour by";
+    modesEl.append(span);
+    // Stress first: the page opens with it.
+    const names = Object.keys(animFields).sort((a, b) => (a === "stress_kpa" ? -1 : b === "stress_kpa" ? 1 : a < b ? -1 : 1));
+    for (const name of [...names, ""]) {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.textContent = name ? `${animFields[name].label} (${animFields[name].unit})` : "plain";
+      b.dataset.field = name;
+      b.addEventListener("click", () => setField(name));
+      modesEl.append(b);
+    }
+    setField(names[0]);
   }
 
   // Camera: look at everything from above, slightly tilted.
@@ -557,5 +688,10 @@ export function createView3d(box, data, layersEl, modesEl, legendEl, onFirstFram
   return { render, setMode, measureRender, setLayer: (id, on) => {
     for (const l of layers) if (l.id === id) l.object.visible = on;
   }, fit: () => { fit(); render(); }, mode: () => currentMode, yarnInfo, layers: layers.map((l) => l.id),
-  animation };
+  animation, fields: fieldMesh ? {
+    names: Object.keys(animFields), current: () => field, set: setField,
+    // What the page shows for corner c (3 t + i of triangle t) at the frame shown: value and rgb 0..1.
+    value: (c) => (field ? fieldValue(animFields[field], fieldFrame, data.relaxed.triangles, c) : null),
+    colour: (c) => Array.from(fieldMesh.geometry.getAttribute("color").array.slice(3 * c, 3 * c + 3)),
+  } : null };
 }

@@ -280,62 +280,181 @@ json read_metrics(const std::string& path) {
   }
 }
 
+/// A per-frame field of a cloth run (cloth.json "fields"), shown on the
+/// garment: its key, label, unit, element ("triangle" or "vertex") and the
+/// key of its measure's description in cloth.json's "result".
+struct FrameFieldKind {
+  const char* key;
+  const char* label;
+  const char* unit;
+  const char* per;
+  const char* measure;
+};
+constexpr FrameFieldKind kFrameFields[] = {{"stress_kpa", "stress", "kPa", "triangle", "stress_measure"},
+                                           {"sliding_mm", "sliding", "mm", "vertex", "sliding_measure"}};
+
+/// One field's values per frame (NaN for null), as cloth.json holds them.
+struct FrameField {
+  const FrameFieldKind* kind;
+  std::vector<std::vector<double>> frames;
+};
+
+/// The per-frame fields of cloth.json for a garment layer of `triangles`
+/// triangles and `vertices` vertices animated over `frames` frames; a field
+/// whose sizes disagree is left out with a note.
+std::vector<FrameField> cloth_fields(const std::string& path, size_t frames, size_t triangles,
+                                     size_t vertices, json& result, json& notes) {
+  const json j = read_metrics(path);
+  std::vector<FrameField> out;
+  const json* fields = j.is_object() && j.contains("fields") ? &j["fields"] : nullptr;
+  if (fields == nullptr || !fields->is_array() || fields->size() != frames) {
+    notes.push_back(
+        fmt::format("cloth.json: {} per-frame fields for the {} frames of animation.glb: the garment "
+                    "is not coloured",
+                    fields != nullptr && fields->is_array() ? fields->size() : 0, frames));
+    return out;
+  }
+  if (j.contains("result") && j["result"].is_object()) result = j["result"];
+  for (const FrameFieldKind& kind : kFrameFields) {
+    const size_t count = std::string_view(kind.per) == "triangle" ? triangles : vertices;
+    FrameField f{&kind, {}};
+    for (const json& frame : *fields) {
+      const json* v = frame.is_object() && frame.contains(kind.key) ? &frame[kind.key] : nullptr;
+      if (v == nullptr || !v->is_array() || v->size() != count) break;
+      std::vector<double>& values = f.frames.emplace_back();
+      values.reserve(count);
+      for (const json& x : *v) values.push_back(x.is_number() ? x.get<double>() : std::nan(""));
+    }
+    if (f.frames.size() == frames) {
+      out.push_back(std::move(f));
+    } else {
+      notes.push_back(fmt::format("cloth.json: {} is not one value per {} ({}) in every frame: not shown",
+                                  kind.key, kind.per, count));
+    }
+  }
+  return out;
+}
+
+/// A field's kept frames as integers in units of `step`, a power of ten
+/// giving at most 1,000 levels below the largest value over all frames
+/// (not only those kept), so the colours of every frame share one scale.
+json quantised_field(const FrameField& f, const std::vector<size_t>& keep, const json& result) {
+  double lo = 0.0, hi = 0.0;
+  for (const std::vector<double>& frame : f.frames) {
+    for (double x : frame) {
+      if (!std::isfinite(x)) continue;
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  }
+  const double top = std::max(hi, -lo);
+  const double step = top > 0.0 ? std::pow(10.0, std::ceil(std::log10(top)) - 3.0) : 1.0;
+  json frames = json::array();
+  for (size_t k : keep) {
+    json a = json::array();
+    a.get_ref<json::array_t&>().reserve(f.frames[k].size());
+    for (double x : f.frames[k]) {
+      if (std::isfinite(x))
+        a.push_back(static_cast<int64_t>(std::llround(x / step)));
+      else
+        a.push_back(nullptr);
+    }
+    frames.push_back(std::move(a));
+  }
+  json out = {{"label", f.kind->label}, {"unit", f.kind->unit}, {"per", f.kind->per}, {"step", step}};
+  out["range"] = rounded_field({lo, hi});
+  out["frames"] = std::move(frames);
+  if (result.contains(f.kind->measure) && result[f.kind->measure].is_string())
+    out["measure"] = result[f.kind->measure];
+  return out;
+}
+
 /// The frames of animation.glb (what `cloth` writes: meshes "garment" and
 /// "body") for the layers they move: "relaxed" (the garment) and "target"
-/// (the body), each only when the layer has as many vertices. Frames beyond
-/// max_values in all are thinned (every k-th, and the last), with a note.
-json animation_json(const std::string& path, const json& data, const Quantizer& q, int64_t max_values,
-                    json& notes) {
+/// (the body), each only when the layer has as many vertices; and, from
+/// cloth.json next to it, the garment's per-frame fields (stress per
+/// triangle, sliding per vertex) when it is a plain mesh of their sizes.
+/// Beyond max_values coordinates and field values in all, every layer and
+/// field keeps the same frames (every k-th, and the last), with a note.
+json animation_json(const std::string& path, const std::string& cloth_path, const json& data,
+                    const Quantizer& q, int64_t max_values, json& files, json& notes) {
   struct Layer {
-    const char* mesh;
     const char* layer;
+    GltfAnimatedMesh mesh;
   };
-  json layers = json::object();
-  std::vector<double> times;
-  for (const Layer& l : {Layer{"garment", "relaxed"}, Layer{"body", "target"}}) {
-    if (!data.contains(l.layer) || !data[l.layer].contains("positions")) continue;
+  std::vector<Layer> moving;
+  for (const auto& [mesh_name, layer] : {std::pair{"garment", "relaxed"}, std::pair{"body", "target"}}) {
+    if (!data.contains(layer) || !data[layer].contains("positions")) continue;
     GltfReadOptions o;
-    o.mesh_name = l.mesh;
+    o.mesh_name = mesh_name;
     GltfAnimatedMesh m;
     try {
       m = read_gltf_animation(path, o);
     } catch (const InvalidInput&) {
       continue;  // no such mesh in the file
     }
-    const size_t nv = data[l.layer]["positions"].size() / 3;
+    const size_t nv = data[layer]["positions"].size() / 3;
     if (static_cast<size_t>(m.num_vertices) != nv || m.channels.empty()) {
       notes.push_back(fmt::format("animation.glb: mesh '{}' has {} vertices, the {} layer {}: not animated",
-                                  l.mesh, m.num_vertices, l.layer, nv));
+                                  mesh_name, m.num_vertices, layer, nv));
       continue;
     }
-    if (times.empty()) times = m.channels.front().times;
-    const size_t per_frame = 3 * nv, n = times.size();
-    size_t step = 1;
-    if (max_values > 0) {
-      while (per_frame * ((n + step - 1) / step) > static_cast<size_t>(max_values) && step < n) ++step;
-    }
-    if (step > 1) {
-      notes.push_back(fmt::format("animation.glb: {} frames of the {} shown every {} (the page's size)", n, l.mesh,
-                                  step));
-    }
-    json frames = json::array(), keep_times = json::array();
-    for (size_t k = 0; k < n; k += step) {
-      const size_t f = k + step >= n ? n - 1 : k;  // always the last frame
-      frames.push_back(q.positions(gltf_positions_at(m, times[f])));
-      keep_times.push_back(times[f]);
-      if (f == n - 1) break;
-    }
+    moving.push_back({layer, std::move(m)});
+  }
+  if (moving.empty()) return json();
+  const std::vector<double> times = moving.front().mesh.channels.front().times;
+  const size_t n = times.size();
+
+  std::vector<FrameField> fields;
+  json result = json::object();
+  std::error_code ec;
+  if (std::string_view(moving.front().layer) == "relaxed" && data["relaxed"].value("kind", "") == "mesh" &&
+      fs::is_regular_file(cloth_path, ec)) {
+    const json& relaxed = data["relaxed"];
+    files.push_back(
+        json{{"name", "cloth.json"}, {"bytes", static_cast<uint64_t>(fs::file_size(cloth_path, ec))}});
+    fields = cloth_fields(cloth_path, n, relaxed["triangles"].size() / 3, relaxed["positions"].size() / 3,
+                          result, notes);
+  }
+
+  size_t per_frame = 0;
+  for (const Layer& l : moving) per_frame += 3 * static_cast<size_t>(l.mesh.num_vertices);
+  for (const FrameField& f : fields) per_frame += f.frames.front().size();
+  size_t step = 1;
+  if (max_values > 0) {
+    while (per_frame * ((n + step - 1) / step) > static_cast<size_t>(max_values) && step < n) ++step;
+  }
+  if (step > 1) {
+    notes.push_back(
+        fmt::format("animation.glb: {} frames shown every {} (the page's size: at most {} coordinates "
+                    "and field values)",
+                    n, step, max_values));
+  }
+  std::vector<size_t> keep;
+  for (size_t k = 0; k < n; k += step) keep.push_back(k + step >= n ? n - 1 : k);  // always the last frame
+  json keep_times = json::array();
+  for (size_t f : keep) keep_times.push_back(times[f]);
+
+  json layers = json::object();
+  for (const Layer& l : moving) {
+    json frames = json::array();
+    for (size_t f : keep) frames.push_back(q.positions(gltf_positions_at(l.mesh, times[f])));
     layers[l.layer] = {{"times", keep_times}, {"frames", std::move(frames)}};
   }
-  return layers.empty() ? json() : json{{"layers", std::move(layers)}};
+  if (!fields.empty()) {
+    json shown = json::object();
+    for (const FrameField& f : fields) shown[f.kind->key] = quantised_field(f, keep, result);
+    layers["relaxed"]["fields"] = std::move(shown);
+  }
+  return json{{"layers", std::move(layers)}};
 }
 
 }  // namespace
 
 const std::vector<std::string>& report_input_files() {
-  static const std::vector<std::string> files = {"report.json", "target.ply",       "stitch_mesh.ply",
-                                                 "relaxed.ply", "knitting_map.csv", "wales.obj",
-                                                 "yarn.obj",    "knitout.k"};
+  static const std::vector<std::string> files = {"report.json", "target.ply",    "stitch_mesh.ply",
+                                                 "relaxed.ply", "predicted.ply", "knitting_map.csv",
+                                                 "wales.obj",   "yarn.obj",      "knitout.k"};
   return files;
 }
 
@@ -379,12 +498,16 @@ json report_data(const std::string& outdir, const ReportHtmlOptions& options) {
     data["target"] = tri_mesh_json(read_mesh(path), Quantizer(options.quantum_mm, path));
   if (has("stitch_mesh.ply", path))
     data["stitch_mesh"] = stitch_mesh_json(path, Quantizer(options.quantum_mm, path));
-  if (has("relaxed.ply", path)) {
-    const Quantizer q(options.quantum_mm, path);
-    json r = ply_has_stitch_types(path) ? stitch_mesh_json(path, q) : tri_mesh_json(read_mesh(path), q);
-    r["kind"] = ply_has_stitch_types(path) ? "stitch_mesh" : "mesh";
-    data["relaxed"] = std::move(r);
-  }
+  // A stitch mesh or a plain triangle mesh, with its kind.
+  auto either_mesh = [&](const std::string& file) {
+    const Quantizer q(options.quantum_mm, file);
+    const bool stitches = ply_has_stitch_types(file);
+    json r = stitches ? stitch_mesh_json(file, q) : tri_mesh_json(read_mesh(file), q);
+    r["kind"] = stitches ? "stitch_mesh" : "mesh";
+    return r;
+  };
+  if (has("relaxed.ply", path)) data["relaxed"] = either_mesh(path);
+  if (has("predicted.ply", path)) data["predicted"] = either_mesh(path);
   if (has("knitting_map.csv", path)) data["map"] = map_json(read_knitting_map_csv(path));
   if (has("wales.obj", path)) {
     data["wales"] = polylines_json(read_polylines_obj(path), Quantizer(options.quantum_mm, path),
@@ -399,7 +522,8 @@ json report_data(const std::string& outdir, const ReportHtmlOptions& options) {
   path = (fs::path(outdir) / "animation.glb").string();
   if (fs::is_regular_file(path, ec)) {
     files.push_back(json{{"name", "animation.glb"}, {"bytes", static_cast<uint64_t>(fs::file_size(path, ec))}});
-    json a = animation_json(path, data, Quantizer(options.quantum_mm, path), options.max_animation_values, notes);
+    json a = animation_json(path, (fs::path(outdir) / "cloth.json").string(), data,
+                            Quantizer(options.quantum_mm, path), options.max_animation_values, files, notes);
     if (!a.is_null()) data["animation"] = std::move(a);
   }
 

@@ -21,9 +21,12 @@
 /// | target.ply        | read_mesh()                 | translucent surface |
 /// | stitch_mesh.ply   | read_stitch_mesh_ply()      | coloured stitches; extra scalar face properties (e.g.
 /// `shape_error`, `distortion`) become colour modes | | relaxed.ply       | stitch mesh or triangle mesh |
-/// second layer | | knitting_map.csv  | read_knitting_map_csv()     | 2D map | | wales.obj         |
+/// second layer | | predicted.ply     | stitch mesh or triangle mesh | third layer (the converged predicted
+/// shape) | | knitting_map.csv  | read_knitting_map_csv()     | 2D map | | wales.obj         |
 /// read_polylines_obj()        | curves | | yarn.obj          | read_polylines_obj()        | tubes (lines
 /// above 40,000 points) | | knitout.k         | read_knitout() + simulate_knitout() | statistics |
+/// | animation.glb + cloth.json | read_gltf_animation(), nlohmann::json | frames of the garment and body,
+/// the garment's stress / sliding per frame |
 ///
 /// The data (`report_data()`) is compact: coordinates are integers in units
 /// of `quantum_mm` (key `scale`), meshes and polylines are flat arrays,
@@ -54,9 +57,12 @@ struct ReportHtmlOptions {
   /// a note says so): a 100k-stitch design has over a million yarn points,
   /// which would make the page slow to open. <= 0 keeps every point.
   int64_t max_polyline_points = 250000;
-  /// The frames of animation.glb (see report_data()) hold at most this many
-  /// coordinates in all; more frames are thinned (every k-th and the last,
-  /// a note says so). <= 0 keeps every frame.
+  /// The frames of animation.glb and the per-frame fields of cloth.json
+  /// (see report_data()) hold at most this many coordinates and field values
+  /// in all (per frame: 3 x the vertices of every moving layer + the
+  /// garment's triangles (stress) + its vertices (sliding)); more frames are
+  /// thinned, the same frames for every layer and field (every k-th and the
+  /// last, a note says so). <= 0 keeps every frame.
   int64_t max_animation_values = 3000000;
 };
 
@@ -73,15 +79,30 @@ const std::vector<std::string>& report_input_files();
 ///                    "type", "direction", "course", "wale", "yarn" (only when
 ///                    a stitch has yarn != 0), "scalars": {name: [per stitch]}},
 ///    "relaxed": {"kind": "stitch_mesh", ...} or {"kind": "mesh", ...},
+///    "predicted": as "relaxed" (predicted.ply: a design's converged predicted shape),
 ///    "map": {"rows", "cols", "cells": "KK.L...", "direction": [...], "yarn"},
 ///    "wales" / "yarn": {"names": [...], "polylines": [[int x3], ...]},
 ///    "knitout": {"lines", "operations", ..., "simulation": {...}},
 ///    "animation": {"layers": {"relaxed" | "target":
-///                  {"times": [s], "frames": [[int x3], ...]}}}}
+///                  {"times": [s], "frames": [[int x3], ...],
+///                   "fields" (relaxed only): {"stress_kpa" | "sliding_mm":
+///                     {"label", "unit", "per": "triangle" | "vertex",
+///                      "measure", "step", "range": [lo, hi],
+///                      "frames": [[int, one per element], ...]}}}}}}
 /// "animation" comes from animation.glb (what `cloth` writes: its mesh
 /// "garment" moves the relaxed layer, "body" the target layer, each when
 /// the vertex counts agree; read by io/read_gltf_animation.h), sampled at
 /// its key times; absent without the file, and not listed as missing.
+/// "fields" come from cloth.json beside it (`fields[f].stress_kpa` per
+/// triangle, `fields[f].sliding_mm` per vertex, one entry per frame of the
+/// animation; "measure" from its "result"), when the relaxed layer is a
+/// plain mesh of those sizes: each value is an integer in units of "step"
+/// (a power of ten: at most 1,000 levels below the largest value of all
+/// frames), null where cloth.json has none; "range" holds min(0, smallest)
+/// and the largest value over all frames, to 5 significant digits (the
+/// colour scale of every frame).
+/// The frames of every layer and field are the same ones (thinned together,
+/// see ReportHtmlOptions::max_animation_values).
 /// A key is absent when its file is. Scalars are rounded to 5 significant
 /// digits of the field's largest magnitude; NaN becomes null.
 /// \throw IOError when `outdir` is not a directory, holds none of the files
