@@ -111,23 +111,15 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
   for (size_t i = 0; i < n; ++i) total += weights.empty() ? 1.0 : weights[i];
 
   auto w = [&](size_t i) { return weights.empty() ? 1.0 : weights[i]; };
-  // Closest points and normals for transform T into (c, nrm); returns the
-  // weighted RMS distance.
-  // The face each point last matched: the next round's search starts from
-  // it (the same closest points, found faster; SurfaceBvh::closest_point()).
-  std::vector<int> last_face(n, -1);
-  auto match = [&](const RigidTransform& T, std::vector<Vec3>& c, std::vector<Vec3>& nrm, std::vector<Mat3>& hess) {
+  // The closest points of the points moved by T, into `cp`; returns the
+  // weighted RMS distance. Each search starts from the face the entry held
+  // before (an earlier round's: the same answer, found faster;
+  // SurfaceBvh::closest_point()).
+  auto match = [&](const RigidTransform& T, std::vector<ClosestPoint>& cp) {
     double sum = 0;
     for (size_t i = 0; i < n; ++i) {
-      const Vec3 x = T.apply(points[i]);
-      const ClosestPoint sp = target.closest_point(x, last_face[i]);
-      last_face[i] = sp.face;
-      c[i] = sp.point;
-      hess[i] = sp.half_squared_distance_hessian();
-      // The gradient of the distance (exact also on edges and vertices);
-      // the face normal for points on the surface.
-      nrm[i] = sp.distance > 0 ? Vec3((x - sp.point) / sp.distance) : sp.normal;
-      sum += w(i) * sp.distance * sp.distance;
+      cp[i] = target.closest_point(T.apply(points[i]), cp[i].face);
+      sum += w(i) * cp[i].distance * cp[i].distance;
     }
     return std::sqrt(sum / total);
   };
@@ -148,29 +140,35 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
   // along a plane) stay put.
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
-  auto model = [&](const RigidTransform& T, const std::vector<Vec3>& c, const std::vector<Vec3>& nrm,
-                   const std::vector<Mat3>& hess, const Vec3& centre, bool newton, Mat6* hessian) {
+  auto model = [&](const RigidTransform& T, const std::vector<ClosestPoint>& cp, const Vec3& centre, bool newton,
+                   Mat6* hessian) {
     Mat6 H = Mat6::Zero();
     Vec6 g = Vec6::Zero();
     for (size_t i = 0; i < n; ++i) {
       const Vec3 x = T.apply(points[i]);
       const Vec3 q = x - centre;
-      const Vec3 r = x - c[i];
+      const Vec3 r = x - cp[i].point;
       g.head<3>() += w(i) * q.cross(r);
       g.tail<3>() += w(i) * r;
       if (!hessian) continue;
       if (newton) {
         Mat3 Q;  // -[q]x = d(omega x q)/d omega
         Q << 0, q.z(), -q.y(), -q.z(), 0, q.x(), q.y(), -q.x(), 0;
-        const Mat3 MQ = hess[i] * Q;
+        const Mat3 M = cp[i].half_squared_distance_hessian();
+        const Mat3 MQ = M * Q;
         const Mat3 rq = r * q.transpose();
         H.topLeftCorner<3, 3>() +=
             w(i) * (Q.transpose() * MQ + 0.5 * (rq + rq.transpose()) - r.dot(q) * Mat3::Identity());
         H.topRightCorner<3, 3>() += w(i) * MQ.transpose();
-        H.bottomRightCorner<3, 3>() += w(i) * hess[i];
-      } else if (!nrm[i].isZero()) {
+        H.bottomRightCorner<3, 3>() += w(i) * M;
+        continue;
+      }
+      // The gradient of the distance (exact also on edges and corners); the
+      // face normal for points on the surface.
+      const Vec3 nrm = cp[i].distance > 0 ? Vec3(r / cp[i].distance) : cp[i].normal;
+      if (!nrm.isZero()) {
         Vec6 a;
-        a << q.cross(nrm[i]), nrm[i];
+        a << q.cross(nrm), nrm;
         H += w(i) * a * a.transpose();
       }
     }
@@ -189,11 +187,10 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     return RigidTransform{dR, centre + xi.tail<3>() - dR * centre}.after(T);
   };
 
-  std::vector<Vec3> closest(n), normals(n), closest2(n), normals2(n);
-  std::vector<Mat3> hessians(n), hessians2(n);
+  std::vector<ClosestPoint> closest(n), closest2(n);
   IcpResult out;
   out.transform = initial;
-  out.rms = out.initial_rms = match(initial, closest, normals, hessians);
+  out.rms = out.initial_rms = match(initial, closest);
   // Rotations are about one fixed point (the start's centroid), so the
   // gradients of successive rounds are in the same coordinates.
   Vec3 centre = Vec3::Zero();
@@ -206,7 +203,7 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
   // (smaller where the target is concave).
   Mat6 B;
   bool have_b = false;
-  Vec6 g = model(out.transform, closest, normals, hessians, centre, false, nullptr);
+  Vec6 g = model(out.transform, closest, centre, false, nullptr);
   int small_gains = 0;
   for (int it = 0; it < options.max_iterations; ++it) {
     if (out.rms == 0) {
@@ -223,17 +220,19 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     Vec6 xi = Vec6::Zero();
     for (int kind = have_b ? 0 : 1; kind < 3 && !(rms < out.rms); ++kind) {
       if (kind > 0) {
-        model(out.transform, closest, normals, hessians, centre, kind == 1, &B);
+        model(out.transform, closest, centre, kind == 1, &B);
         have_b = kind == 1;
       }
       xi = descent_step(B, g);
       next = move(xi, centre, out.transform);
-      if (next.rotation.allFinite() && next.translation.allFinite()) rms = match(next, closest2, normals2, hessians2);
+      if (next.rotation.allFinite() && next.translation.allFinite()) rms = match(next, closest2);
     }
     const bool secant = rms < out.rms;
     if (!(rms < out.rms)) {
-      next = rigid_align(points, closest, weights);
-      rms = match(next, closest2, normals2, hessians2);
+      std::vector<Vec3> c(n);
+      for (size_t i = 0; i < n; ++i) c[i] = closest[i].point;
+      next = rigid_align(points, c, weights);
+      rms = match(next, closest2);
     }
     if (!(rms < out.rms)) {  // no progress (rounding): keep the current transform
       out.converged = true;
@@ -243,9 +242,7 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
     out.transform = next;
     out.rms = rms;
     closest.swap(closest2);
-    normals.swap(normals2);
-    hessians.swap(hessians2);
-    const Vec6 g_next = model(out.transform, closest, normals, hessians, centre, false, nullptr);
+    const Vec6 g_next = model(out.transform, closest, centre, false, nullptr);
     const Vec6 y = g_next - g;
     g = g_next;
     if (secant && have_b && xi.dot(y) > 1e-12 * xi.norm() * y.norm()) {

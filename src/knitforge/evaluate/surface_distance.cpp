@@ -128,6 +128,7 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p, int hint_face) const {
   }
   int best_slot_face = std::numeric_limits<int>::max();
   int best_slot = 0;
+  int best_feature = 0;
   int stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -136,11 +137,13 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p, int hint_face) const {
     if (box_distance2(p, node.lo, node.hi) > std::min(best2, bound2)) continue;
     if (node.left < 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
-        const Vec3 c = closest_point_on_triangle(p, tri_[i][0], tri_[i][1], tri_[i][2]);
-        const double d2 = (c - p).squaredNorm();
+        const TrianglePoint c = closest_triangle_point(p, tri_[i][0], tri_[i][1], tri_[i][2]);
+        const double d2 = (c.point - p).squaredNorm();
         if (d2 < best2 || (d2 == best2 && face_ids_[i] < best_slot_face)) {
           best2 = d2;
-          best.point = c;
+          best.point = c.point;
+          best.region = c.region;
+          best_feature = c.feature;
           best.face = face_ids_[i];
           best_slot_face = face_ids_[i];
           best_slot = i;
@@ -162,11 +165,9 @@ ClosestPoint SurfaceBvh::closest_point(const Vec3& p, int hint_face) const {
   }
   best.distance = std::sqrt(best2);
   best.normal = normal_[best_slot];
-  const auto& t = tri_[best_slot];
-  const TrianglePoint tp = closest_triangle_point(p, t[0], t[1], t[2]);
-  best.region = tp.region;
-  if (tp.region == TrianglePoint::Region::Edge) {
-    const Vec3 e = t[(tp.feature + 1) % 3] - t[tp.feature];
+  if (best.region == TrianglePoint::Region::Edge) {
+    const auto& t = tri_[best_slot];
+    const Vec3 e = t[(best_feature + 1) % 3] - t[best_feature];
     if (e.norm() > 0) best.edge = e.normalized();
   }
   return best;
