@@ -197,11 +197,13 @@ int run_tube_design(const TubeCommandOptions& o) {
                               {"all", side(d.course_spacing.all)}};
   report["knittability"] = {{"map", to_json(d.map_check)}, {"stitch_mesh", to_json(d.mesh_check)}};
   // The converged predicted shape against the whole surface (a closed
-  // tube's crown cap included), as the sheet routes report it.
+  // tube's crown cap included), as the sheet routes report it; none for a
+  // design that cannot be knitted (report_design_shape() still removes a
+  // predicted.ply an earlier run left in the directory).
+  DesignPredictOptions predict = o.predict;
+  predict.skip = predict.skip || !knittable;
   const std::vector<std::string> shape_notes =
-      knittable ? report_design_shape(report, o.predict, o.no_evaluate, o.outdir, d.stitch_mesh, params, input,
-                                      nullptr, o.ascii)
-                : std::vector<std::string>{};
+      report_design_shape(report, predict, o.no_evaluate, o.outdir, d.stitch_mesh, params, input, nullptr, o.ascii);
   const int pairs = closed_end ? static_cast<int>(closing_pairs(d.map).size()) : 0;
   if (closed_end)
     report["closed_end"] = {{"crown_stitches", d.round_stitches.back()},

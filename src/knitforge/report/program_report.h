@@ -9,7 +9,7 @@
 ///  - knitout.k: the program (so the page's knitout panel and download work);
 ///  - report.json: {"program", "machine": verdict, counts per category,
 ///    statistics, yarn per carrier (estimates), "fabric": {"kind": "sheet" |
-///    "tube" | "", "reason", "stitches", "courses" and "wales" (the map's
+///    "tube" | "none", "reason", "stitches", "courses" and "wales" (the map's
 ///    rows and columns), "rounds" and "closed_end" (a tube's map), "rounds"
 ///    and "ring" (plain rounds), "stitch_size_mm"}, "courses": one entry per carriage pass that
 ///    made stitches ({"pass", "lines": [first, last], "carriers",

@@ -15,18 +15,21 @@
 ///
 /// Files read from the output directory (each optional; docs/formats.md):
 ///
-/// | file              | reader                      | shown as |
-/// |-------------------|-----------------------------|----------|
-/// | report.json       | nlohmann::json              | metrics tree |
-/// | target.ply        | read_mesh()                 | translucent surface |
-/// | stitch_mesh.ply   | read_stitch_mesh_ply()      | coloured stitches; extra scalar face properties (e.g.
-/// `shape_error`, `distortion`) become colour modes | | relaxed.ply       | stitch mesh or triangle mesh |
-/// second layer | | predicted.ply     | stitch mesh or triangle mesh | third layer (the converged predicted
-/// shape) | | knitting_map.csv  | read_knitting_map_csv()     | 2D map | | wales.obj         |
-/// read_polylines_obj()        | curves | | yarn.obj          | read_polylines_obj()        | tubes (lines
-/// above 40,000 points) | | knitout.k         | read_knitout() + simulate_knitout() | statistics |
-/// | animation.glb + cloth.json | read_gltf_animation(), nlohmann::json | frames of the garment and body,
-/// the garment's stress / sliding per frame |
+///  - report.json (nlohmann::json): the metrics tree;
+///  - target.ply (read_mesh()): a translucent surface;
+///  - stitch_mesh.ply (read_stitch_mesh_ply()): the coloured stitches; extra
+///    scalar face properties (e.g. `shape_error`, `distortion`) become
+///    colour modes;
+///  - relaxed.ply (a stitch mesh or a triangle mesh): the second layer;
+///  - predicted.ply (a stitch mesh or a triangle mesh): the third layer, the
+///    converged predicted shape;
+///  - knitting_map.csv (read_knitting_map_csv()): the 2D map;
+///  - wales.obj (read_polylines_obj()): curves;
+///  - yarn.obj (read_polylines_obj()): tubes (lines above 40,000 points);
+///  - knitout.k (read_knitout() + simulate_knitout()): statistics;
+///  - animation.glb + cloth.json (read_gltf_animation(), nlohmann::json):
+///    frames of the garment and the body, the garment's stress / sliding per
+///    frame.
 ///
 /// The data (`report_data()`) is compact: coordinates are integers in units
 /// of `quantum_mm` (key `scale`), meshes and polylines are flat arrays,
