@@ -101,9 +101,42 @@ def rigid():
     return d
 
 
+def skinned():
+    """A skinned strip: two joint sets (the same joint in both), float weights, joints listed out of node order,
+    inverse bind matrices; the hips move (LINEAR), the spine turns; the mesh node's translation is to be ignored."""
+    d = Doc()
+    pos = d.floats([0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0], "VEC3", 3)
+    idx = d.indices([0, 1, 2, 3], "B", 5121)
+    j0 = d.indices([1, 0, 0, 0] * 3 + [0, 1, 0, 0], "B", 5121)
+    d.doc["accessors"][j0].update(type="VEC4", count=4)
+    j1 = d.indices([0, 0, 0, 0] * 3 + [1, 0, 0, 0], "H", 5123)
+    d.doc["accessors"][j1].update(type="VEC4", count=4)
+    w0 = d.floats([1, 0, 0, 0] * 3 + [0.25, 0.25, 0, 0], "VEC4", 4)
+    w1 = d.floats([0, 0, 0, 0] * 3 + [0.25, 0.25, 0, 0], "VEC4", 4)
+    ibm = d.floats([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1,
+                    1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], "MAT4", 16)
+    times = d.floats([0, 1], "SCALAR", 1)
+    move = d.floats([0, 0, 0, 10, 0, 0], "VEC3", 3)
+    h = 0.5 ** 0.5
+    turn = d.floats([0, 0, 0, 1, 0, 0, h, h], "VEC4", 4)
+    d.doc["meshes"] = [{"name": "torso", "primitives": [
+        {"attributes": {"POSITION": pos, "JOINTS_0": j0, "WEIGHTS_0": w0, "JOINTS_1": j1, "WEIGHTS_1": w1},
+         "indices": idx, "mode": 5}]}]
+    d.doc["nodes"] = [{"name": "hips", "children": [1]},
+                      {"name": "spine", "translation": [0, 0, 1]},
+                      {"name": "skinned", "mesh": 0, "skin": 0, "translation": [50, 0, 0]}]
+    d.doc["skins"] = [{"joints": [1, 0], "inverseBindMatrices": ibm, "skeleton": 0}]
+    d.doc["scenes"] = [{"nodes": [0, 2]}]
+    d.doc["animations"] = [{"name": "twist", "samplers": [{"input": times, "output": move},
+                                                          {"input": times, "output": turn}],
+                            "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}},
+                                         {"sampler": 1, "target": {"node": 1, "path": "rotation"}}]}]
+    return d
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     for name, data in [("morph_targets.glb", morph().glb()), ("rigid_hierarchy.glb", rigid().glb()),
-                       ("morph_targets_data_uri.gltf", morph().gltf())]:
+                       ("morph_targets_data_uri.gltf", morph().gltf()), ("skinned.glb", skinned().glb())]:
         with open(os.path.join(OUT, name), "wb") as f:
             f.write(data)

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 #include <nlohmann/json.hpp>
 
@@ -103,6 +104,61 @@ Builder rigid_triangle() {
                           {"channels",
                            {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}},
                             {{"sampler", 1}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}};
+  return b;
+}
+
+/// A skinned strip along x (0 to 20 mm at x = 0, 5, ..., 20; y = 0 and 2):
+/// joint 0 "shoulder" at the origin, joint 1 "elbow" its child at x = 10
+/// (inverse bind matrix: back by 10); vertices left of x = 10 follow the
+/// shoulder, right of it the elbow, at x = 10 half each (8-bit normalised
+/// weights: 127/255 the shoulder, 128/255 the elbow). The elbow turns about z from 0 to 90
+/// degrees over 1 s. The mesh node has a translation the specification says
+/// to ignore.
+Builder skinned_strip() {
+  Builder b;
+  std::vector<float> pos;
+  std::vector<uint16_t> idx;
+  std::string joints, weights;
+  for (int i = 0; i < 5; ++i) {
+    for (int r = 0; r < 2; ++r) {
+      pos.insert(pos.end(), {5.0f * i, 2.0f * r, 0.0f});
+      const int j0 = i <= 2 ? 0 : 1, j1 = i == 2 ? 1 : 0;  // x = 10: shoulder and elbow
+      const uint8_t w0 = i == 2 ? 127 : 255, w1 = i == 2 ? 128 : 0;
+      joints += std::string{static_cast<char>(j0), static_cast<char>(j1), 0, 0};
+      weights += std::string{static_cast<char>(w0), static_cast<char>(w1), 0, 0};
+    }
+    if (i > 0) {
+      const uint16_t a = static_cast<uint16_t>(2 * i - 2);
+      idx.insert(idx.end(), {a, static_cast<uint16_t>(a + 2), static_cast<uint16_t>(a + 1),
+                             static_cast<uint16_t>(a + 1), static_cast<uint16_t>(a + 2), static_cast<uint16_t>(a + 3)});
+    }
+  }
+  const int p = b.floats(pos, "VEC3", 3);
+  const int ix = b.u16(idx);
+  b.doc["accessors"].push_back({{"bufferView", b.view(joints)}, {"componentType", 5121}, {"count", 10}, {"type", "VEC4"}});
+  const int ja = static_cast<int>(b.doc["accessors"].size()) - 1;
+  b.doc["accessors"].push_back(
+      {{"bufferView", b.view(weights)}, {"componentType", 5121}, {"normalized", true}, {"count", 10}, {"type", "VEC4"}});
+  const int wa = static_cast<int>(b.doc["accessors"].size()) - 1;
+  std::vector<float> ibm(32, 0.0f);
+  for (int m = 0; m < 2; ++m)
+    for (int k = 0; k < 4; ++k) ibm[static_cast<size_t>(16 * m + 5 * k)] = 1.0f;
+  ibm[16 + 12] = -10.0f;  // column-major: the translation is entries 12-14
+  const int ib = b.floats(ibm, "MAT4", 16);
+  const int times = b.floats({0.0f, 1.0f}, "SCALAR", 1);
+  const float h = static_cast<float>(std::sqrt(0.5));
+  const int rot = b.floats({0, 0, 0, 1, 0, 0, h, h}, "VEC4", 4);
+  b.doc["meshes"] = {{{"name", "arm"},
+                      {"primitives",
+                       {{{"attributes", {{"POSITION", p}, {"JOINTS_0", ja}, {"WEIGHTS_0", wa}}}, {"indices", ix}}}}}};
+  b.doc["nodes"] = {{{"name", "shoulder"}, {"children", {1}}},
+                    {{"name", "elbow"}, {"translation", {10, 0, 0}}},
+                    {{"name", "skinned"}, {"mesh", 0}, {"skin", 0}, {"translation", {1000, 0, 0}}}};
+  b.doc["skins"] = {{{"joints", {0, 1}}, {"inverseBindMatrices", ib}}};
+  b.doc["scenes"] = {{{"nodes", {0, 2}}}};
+  b.doc["animations"] = {{{"name", "bend"},
+                          {"samplers", {{{"input", times}, {"output", rot}}}},
+                          {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "rotation"}}}}}}}};
   return b;
 }
 
@@ -225,6 +281,94 @@ TEST(ReadGltfAnimation, StripsSparseTargetsCubicSplinesAndSeams) {
   expect_near(gltf_positions_at(m, 0.0)[3], Vec3(1, 1, 0));
 }
 
+// Linear blend skinning: the bind pose at t = 0 (the joints' global
+// transforms cancel their inverse bind matrices), the elbow's side turned
+// about the elbow at 1 s, the vertices weighted half and half in between,
+// and the skinned node's own translation ignored.
+TEST(ReadGltfAnimation, SkinnedMeshFollowsItsJoints) {
+  TempDir dir;
+  const Builder b = skinned_strip();
+  const GltfAnimatedMesh m = read_gltf_animation(dir.write("arm.glb", Builder(b).glb()));
+  EXPECT_EQ(m.num_vertices, 10);
+  EXPECT_EQ(m.faces.size(), 8u);
+  ASSERT_EQ(m.skins.size(), 1u);
+  const std::vector<Vec3> rest = gltf_positions_at(m, 0.0);
+  for (int i = 0; i < 5; ++i)
+    for (int r = 0; r < 2; ++r) expect_near(rest[static_cast<size_t>(2 * i + r)], Vec3(5.0 * i, 2.0 * r, 0));
+  const std::vector<Vec3> bent = gltf_positions_at(m, 1.0);
+  for (int r = 0; r < 2; ++r) {
+    const double y = 2.0 * r;
+    expect_near(bent[static_cast<size_t>(r)], Vec3(0, y, 0));           // shoulder's
+    expect_near(bent[static_cast<size_t>(2 + r)], Vec3(5, y, 0));       // shoulder's
+    expect_near(bent[static_cast<size_t>(8 + r)], Vec3(10 - y, 10, 0)); // the elbow's, turned 90 degrees
+    expect_near(bent[static_cast<size_t>(6 + r)], Vec3(10 - y, 5, 0));
+    // Half each (127/255 and 128/255, summing to 1): between (10, y) and (10 - y, 0).
+    const double w1 = 128.0 / 255.0;
+    expect_near(bent[static_cast<size_t>(4 + r)], Vec3(10 - w1 * y, (1 - w1) * y, 0), 1e-6);
+  }
+  // Halfway: the elbow's tip on the 45-degree line from the elbow.
+  const double c = std::sqrt(0.5);
+  expect_near(gltf_positions_at(m, 0.5)[8], Vec3(10 + 10 * c, 10 * c, 0));
+  // The same from a .gltf with the buffer in a data: URI.
+  const GltfAnimatedMesh u = read_gltf_animation(dir.write("arm.gltf", b.gltf_data_uri()));
+  expect_near(gltf_positions_at(u, 1.0)[9], Vec3(8, 10, 0));
+}
+
+TEST(ReadGltfAnimation, BadSkinsAreRefusedNamingTheElement) {
+  TempDir dir;
+  auto with = [&](const std::function<void(Builder&)>& edit) {
+    Builder b = skinned_strip();
+    edit(b);
+    return dir.write("bad_skin.glb", b.glb());
+  };
+  expect_error<IOError>([&] { read_gltf_animation(with([](Builder& b) { b.doc["skins"][0]["joints"] = {0, 7}; })); },
+                        {"bad_skin.glb", "skins[0]", "joint 7 is not a node index"});
+  expect_error<IOError>([&] { read_gltf_animation(with([](Builder& b) { b.doc["skins"][0]["joints"] = {0}; })); },
+                        {"meshes[0].primitives[0]", "JOINTS_0", "uses joint 1", "1 joints"});
+  expect_error<IOError>(
+      [&] {
+        read_gltf_animation(with([](Builder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"].erase("JOINTS_0"); }));
+      },
+      {"meshes[0].primitives[0]", "WEIGHTS_0 without JOINTS_0"});
+  expect_error<IOError>(
+      [&] {
+        read_gltf_animation(with([](Builder& b) {
+          auto& a = b.doc["meshes"][0]["primitives"][0]["attributes"];
+          a.erase("JOINTS_0");
+          a.erase("WEIGHTS_0");
+        }));
+      },
+      {"meshes[0].primitives[0]", "skinned node but has no JOINTS_0"});
+  expect_error<IOError>(  // weights not normalised: 128/255 alone at x = 10
+      [&] {
+        read_gltf_animation(with([](Builder& b) {
+          std::string w(40, '\0');
+          for (int v = 0; v < 10; ++v) w[static_cast<size_t>(4 * v)] = static_cast<char>(v / 2 == 2 ? 128 : 255);
+          b.doc["accessors"].push_back({{"bufferView", b.view(w)}, {"componentType", 5121}, {"normalized", true},
+                                        {"count", 10}, {"type", "VEC4"}});
+          b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = b.doc["accessors"].size() - 1;
+        }));
+      },
+      {"skin weights of vertex 4 sum to 0.502", "normalised"});
+  expect_error<IOError>(
+      [&] {
+        read_gltf_animation(with([](Builder& b) {
+          std::vector<float> m(32, 0.0f);
+          b.doc["skins"][0]["inverseBindMatrices"] = b.floats(m, "MAT4", 16);
+        }));
+      },
+      {"skins[0]", "inverse bind matrix 0", "(0, 0, 0, 1)"});
+  expect_error<IOError>(
+      [&] {
+        read_gltf_animation(with([](Builder& b) {
+          b.doc["skins"][0]["inverseBindMatrices"] = b.floats(std::vector<float>(16, 0.0f), "MAT4", 16);
+        }));
+      },
+      {"skins[0]", "1 matrices for 2 joints"});
+  expect_error<IOError>([&] { read_gltf_animation(with([](Builder& b) { b.doc["nodes"][2]["skin"] = 3; })); },
+                        {"nodes[2]", "refers to skins[3]"});
+}
+
 TEST(ReadGltfAnimation, BadFilesAreRefusedNamingTheElement) {
   TempDir dir;
   expect_error<IOError>([&] { read_gltf_animation(dir.write("j.gltf", "{not json")); }, {"j.gltf", "not a glTF"});
@@ -252,8 +396,6 @@ TEST(ReadGltfAnimation, BadFilesAreRefusedNamingTheElement) {
   expect_error<IOError>(
       [&] { read_gltf_animation(with([](Builder& b) { b.doc["meshes"][0]["primitives"][0]["indices"] = 42; })); },
       {"refers to accessors[42]"});
-  expect_error<IOError>([&] { read_gltf_animation(with([](Builder& b) { b.doc["nodes"][1]["skin"] = 0; })); },
-                        {"nodes[1]", "skinning is not read", "morph targets"});
   expect_error<IOError>(
       [&] { read_gltf_animation(with([](Builder& b) { b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"}; })); },
       {"KHR_draco_mesh_compression"});
@@ -321,6 +463,14 @@ TEST(ReadGltfAnimation, FuzzSeedsRead) {
   expect_near(gltf_positions_at(rigid, 1.0)[1], Vec3(100, 1, 5), 1e-3);
   // "other": a static matrix (+5, +6, +7), its target at weight 0.5 at 1 s.
   expect_near(gltf_positions_at(rigid, 1.0)[7], Vec3(6, 7, 8), 1e-6);
+  // Skinned: at 1 s the hips moved 10 along x and the spine (joint 0) turned
+  // 90 degrees about z around (10, 0, 1); vertex 3 is half each (0.25 + 0.25
+  // in two sets), vertex 1 the hips' only; the node's translation ignored.
+  const GltfAnimatedMesh skinned = read_gltf_animation(seeds + "skinned.glb");
+  ASSERT_EQ(skinned.num_vertices, 4);
+  expect_near(gltf_positions_at(skinned, 0.0)[3], Vec3(1, 1, 0), 1e-6);
+  expect_near(gltf_positions_at(skinned, 1.0)[1], Vec3(11, 0, 0), 1e-6);
+  expect_near(gltf_positions_at(skinned, 1.0)[3], Vec3(10, 1, 0), 1e-6);
 }
 
 }  // namespace

@@ -53,7 +53,8 @@ int type_components(const std::string& t) {
   if (t == "VEC2") return 2;
   if (t == "VEC3") return 3;
   if (t == "VEC4") return 4;
-  return 0;  // matrices are not used here
+  if (t == "MAT4") return 16;
+  return 0;  // the other matrices are not used here
 }
 
 std::string base64_decode(std::string_view s, bool& ok) {
@@ -426,6 +427,89 @@ json parse_file(const std::string& path, const std::string& data, std::string& b
   return j;
 }
 
+/// skins[index] of the file: its joints' nodes and inverse bind matrices.
+GltfAnimatedMesh::Skin read_skin(Doc& d, uint64_t index, size_t num_nodes, const std::string& from) {
+  const json& o = d.item("skins", index, from);
+  const std::string el = fmt::format("skins[{}]", index);
+  GltfAnimatedMesh::Skin skin;
+  if (!o.contains("joints") || !o["joints"].is_array() || o["joints"].empty())
+    d.fail(el, "must have a non-empty \"joints\" array of node indices");
+  std::set<uint64_t> seen;
+  for (const json& x : o["joints"]) {
+    if (!x.is_number_unsigned() || x.get<uint64_t>() >= num_nodes)
+      d.fail(el, fmt::format("joint {} is not a node index (the file has {} nodes)", x.dump(), num_nodes));
+    if (!seen.insert(x.get<uint64_t>()).second) d.fail(el, fmt::format("joint {} is listed twice", x.dump()));
+    skin.joints.push_back(x.get<int>());
+  }
+  const size_t nj = skin.joints.size();
+  std::array<double, 16> identity{};
+  for (int k = 0; k < 4; ++k) identity[static_cast<size_t>(5 * k)] = 1.0;
+  skin.inverse_bind.assign(nj, identity);
+  if (o.contains("inverseBindMatrices")) {
+    const Values m = d.floats(d.uint(o, "inverseBindMatrices", el), "inverseBindMatrices of " + el, {"MAT4"}, false);
+    if (m.count < nj)
+      d.fail(el, fmt::format("inverseBindMatrices holds {} matrices for {} joints", m.count, nj));
+    for (size_t j = 0; j < nj; ++j) {
+      std::copy_n(m.v.begin() + static_cast<std::ptrdiff_t>(16 * j), 16, skin.inverse_bind[j].begin());
+      const auto& b = skin.inverse_bind[j];  // column-major: the last row is b[3], b[7], b[11], b[15]
+      if (std::abs(b[3]) > 1e-6 || std::abs(b[7]) > 1e-6 || std::abs(b[11]) > 1e-6 || std::abs(b[15] - 1) > 1e-6)
+        d.fail(el, fmt::format("inverse bind matrix {} does not end in the row (0, 0, 0, 1)", j));
+    }
+  }
+  return skin;
+}
+
+/// The joints and weights of each vertex of a skinned primitive (JOINTS_n /
+/// WEIGHTS_n), sorted by joint, weights rescaled to sum to 1.
+std::vector<std::vector<std::pair<int, double>>> read_influences(Doc& d, const json& attrs, const std::string& pel,
+                                                                 size_t num_vertices, size_t num_joints) {
+  std::vector<std::vector<std::pair<int, double>>> infl(num_vertices);
+  int sets = 0;
+  for (;; ++sets) {
+    const std::string jn = fmt::format("JOINTS_{}", sets), wn = fmt::format("WEIGHTS_{}", sets);
+    if (!attrs.contains(jn) && !attrs.contains(wn)) break;
+    if (!attrs.contains(jn) || !attrs.contains(wn))
+      d.fail(pel, fmt::format("has {} without {}", attrs.contains(jn) ? jn : wn, attrs.contains(jn) ? wn : jn));
+    const Values joints =
+        d.accessor(d.uint(attrs, jn.c_str(), pel), jn + " of " + pel, {"VEC4"}, {kUnsignedByte, kUnsignedShort});
+    const Values weights = d.floats(d.uint(attrs, wn.c_str(), pel), wn + " of " + pel, {"VEC4"}, true);
+    if (weights.component_type == kByte || weights.component_type == kShort)
+      d.fail(pel, fmt::format("{} must be float or normalised unsigned byte/short", wn));
+    if (joints.count != num_vertices || weights.count != num_vertices)
+      d.fail(pel, fmt::format("{} has {} and {} {} entries for {} vertices", jn, joints.count, wn, weights.count,
+                              num_vertices));
+    for (size_t v = 0; v < num_vertices; ++v) {
+      for (size_t c = 0; c < 4; ++c) {
+        const double w = weights.v[4 * v + c], j = joints.v[4 * v + c];
+        if (w < 0) d.fail(pel, fmt::format("{}: vertex {} has a negative weight ({})", wn, v, w));
+        if (w == 0) continue;
+        if (j >= static_cast<double>(num_joints))
+          d.fail(pel, fmt::format("{}: vertex {} uses joint {}, but the skin has {} joints", jn, v, j, num_joints));
+        infl[v].emplace_back(static_cast<int>(j), w);
+      }
+    }
+  }
+  if (sets == 0) d.fail(pel, "belongs to a skinned node but has no JOINTS_0 / WEIGHTS_0");
+  for (size_t v = 0; v < num_vertices; ++v) {
+    auto& f = infl[v];
+    std::sort(f.begin(), f.end());
+    // The same joint in two sets: one entry.
+    size_t out = 0;
+    for (size_t k = 0; k < f.size(); ++k) {
+      if (out > 0 && f[out - 1].first == f[k].first) f[out - 1].second += f[k].second;
+      else f[out++] = f[k];
+    }
+    f.resize(out);
+    double sum = 0;
+    for (const auto& [j, w] : f) sum += w;
+    if (!(std::abs(sum - 1.0) <= 0.02))
+      d.fail(pel, fmt::format("the skin weights of vertex {} sum to {:.4g}, not 1 (re-export with normalised weights)",
+                              v, sum));
+    for (auto& jw : f) jw.second /= sum;
+  }
+  return infl;
+}
+
 }  // namespace
 
 GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOptions& options) {
@@ -569,11 +653,20 @@ GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOpti
   }
 
   // Their primitives.
+  std::map<uint64_t, int> skin_of_file;  // the file's skin index -> index into out.skins
   for (size_t ni : chosen) {
     const std::string nel = fmt::format("nodes[{}]", ni);
+    int skin = -1;
     if (jnodes[ni].contains("skin")) {
-      d.fail(nel, "is skinned (\"skin\"): skinning is not read; export the motion baked into morph targets (shape "
-                  "keys) or as one OBJ per frame (\"frames\" in the scene)");
+      const uint64_t si = d.uint(jnodes[ni], "skin", nel);
+      const auto found = skin_of_file.find(si);
+      if (found != skin_of_file.end()) {
+        skin = found->second;
+      } else {
+        out.skins.push_back(read_skin(d, si, nn, nel));
+        skin = static_cast<int>(out.skins.size()) - 1;
+        skin_of_file[si] = skin;
+      }
     }
     const uint64_t mi = static_cast<uint64_t>(node_mesh[ni]);
     const json& m = d.item("meshes", mi, nel);
@@ -616,6 +709,11 @@ GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOpti
           part.targets.push_back(std::move(disp));
         }
       }
+      std::vector<std::vector<std::pair<int, double>>> infl;  // skinned: per vertex
+      if (skin >= 0) {
+        part.skin = skin;
+        infl = read_influences(d, attrs, pel, nv, out.skins[static_cast<size_t>(skin)].joints.size());
+      }
       if (pi == 0) n_targets = part.targets.size();
       if (part.targets.size() != n_targets)
         d.fail(pel, fmt::format("has {} morph targets, primitive 0 of the mesh {}", part.targets.size(), n_targets));
@@ -649,7 +747,7 @@ GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOpti
       } else {
         for (size_t k = 1; k + 1 < idx.size(); ++k) add(idx[0], idx[k], idx[k + 1]);
       }
-      // Merge the vertices a seam split (same base, same displacements).
+      // Merge the vertices a seam split (same base, same displacements, same skin weights).
       std::vector<size_t> order(nv);
       std::iota(order.begin(), order.end(), size_t{0});
       auto key_less = [&](size_t a, size_t b) {
@@ -658,13 +756,14 @@ GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOpti
         for (const auto& t : part.targets)
           for (int c = 0; c < 3; ++c)
             if (t[a][c] != t[b][c]) return t[a][c] < t[b][c];
+        if (!infl.empty() && infl[a] != infl[b]) return infl[a] < infl[b];
         return a < b;
       };
       auto same = [&](size_t a, size_t b) {
         if (part.base[a] != part.base[b]) return false;
         for (const auto& t : part.targets)
           if (t[a] != t[b]) return false;
-        return true;
+        return infl.empty() || infl[a] == infl[b];
       };
       std::sort(order.begin(), order.end(), key_less);  // equal keys: the first in file order first
       std::vector<size_t> first(nv);  // the first vertex of each one's equals
@@ -681,8 +780,19 @@ GltfAnimatedMesh read_gltf_animation(const std::string& path, const GltfReadOpti
       for (size_t v = 0; v < nv; ++v) remap[v] = remap[first[v]];
       GltfAnimatedMesh::Part merged;
       merged.node = part.node;
+      merged.skin = part.skin;
       merged.first_vertex = out.num_vertices;
       for (size_t v : keep) merged.base.push_back(part.base[v]);
+      if (!infl.empty()) {
+        merged.influence_start.push_back(0);
+        for (size_t v : keep) {
+          for (const auto& [j, w] : infl[v]) {
+            merged.influence_joint.push_back(j);
+            merged.influence_weight.push_back(w);
+          }
+          merged.influence_start.push_back(static_cast<int>(merged.influence_joint.size()));
+        }
+      }
       for (const auto& t : part.targets) {
         merged.targets.emplace_back();
         for (size_t v : keep) merged.targets.back().push_back(t[v]);
@@ -888,11 +998,30 @@ std::vector<Vec3> gltf_positions_at(const GltfAnimatedMesh& m, double t) {
       local[i].topRightCorner<3, 1>() = tr[i];
     }
   }
+  // Global transforms: a node's parents' local transforms times its own.
+  std::vector<Eigen::Matrix4d> global(nn);
+  std::vector<char> done(nn, 0);
+  for (size_t i = 0; i < nn; ++i) {
+    std::vector<size_t> chain;  // i and its ancestors not yet done, i first
+    for (int p = static_cast<int>(i); p >= 0 && !done[static_cast<size_t>(p)]; p = m.nodes[static_cast<size_t>(p)].parent)
+      chain.push_back(static_cast<size_t>(p));
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const int parent = m.nodes[*it].parent;
+      global[*it] = parent >= 0 ? Eigen::Matrix4d(global[static_cast<size_t>(parent)] * local[*it]) : local[*it];
+      done[*it] = 1;
+    }
+  }
+  // Each skin's joint matrices: the joint's global transform times its inverse bind matrix.
+  std::vector<std::vector<Eigen::Matrix4d>> joint_matrices(m.skins.size());
+  for (size_t s = 0; s < m.skins.size(); ++s) {
+    const auto& skin = m.skins[s];
+    for (size_t j = 0; j < skin.joints.size(); ++j)
+      joint_matrices[s].push_back(global[static_cast<size_t>(skin.joints[j])] *
+                                  Eigen::Map<const Eigen::Matrix4d>(skin.inverse_bind[j].data()));
+  }
   std::vector<Vec3> out(static_cast<size_t>(m.num_vertices));
   for (const auto& part : m.parts) {
-    Eigen::Matrix4d g = local[static_cast<size_t>(part.node)];
-    for (int p = m.nodes[static_cast<size_t>(part.node)].parent; p >= 0; p = m.nodes[static_cast<size_t>(p)].parent)
-      g = local[static_cast<size_t>(p)] * g;
+    const Eigen::Matrix4d& g = global[static_cast<size_t>(part.node)];
     const std::vector<double>& w = weights[static_cast<size_t>(part.node)];
     const Eigen::Matrix3d A = g.topLeftCorner<3, 3>();
     const Vec3 b = g.topRightCorner<3, 1>();
@@ -902,7 +1031,16 @@ std::vector<Vec3> gltf_positions_at(const GltfAnimatedMesh& m, double t) {
     for (size_t v = 0; v < part.base.size(); ++v) {
       Vec3 x = part.base[v];
       for (size_t k : active) x += w[k] * part.targets[k][v];
-      const Vec3 y = A * x + b;
+      Vec3 y = Vec3::Zero();
+      if (part.skin >= 0) {  // linear blend skinning; the node's own transform is ignored
+        const auto& J = joint_matrices[static_cast<size_t>(part.skin)];
+        for (int e = part.influence_start[v]; e < part.influence_start[v + 1]; ++e) {
+          const Eigen::Matrix4d& M = J[static_cast<size_t>(part.influence_joint[static_cast<size_t>(e)])];
+          y += part.influence_weight[static_cast<size_t>(e)] * (M.topLeftCorner<3, 3>() * x + M.topRightCorner<3, 1>());
+        }
+      } else {
+        y = A * x + b;
+      }
       if (!y.allFinite()) {
         throw InvalidInput(fmt::format("{}: at {} s a vertex of nodes[{}] is not finite (the transforms overflow)",
                                        m.path, t, part.node));

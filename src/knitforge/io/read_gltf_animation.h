@@ -11,8 +11,9 @@
 /// mesh: primitives in mode TRIANGLES (4, the default), TRIANGLE_STRIP (5)
 /// and TRIANGLE_FAN (6); POSITION float32 VEC3; indices unsigned
 /// byte/short/int or none. Vertices of one primitive at the same position
-/// with the same morph displacements are merged (exporters split vertices
-/// at UV and normal seams; the body's parts are its connected components).
+/// with the same morph displacements and skin weights are merged (exporters
+/// split vertices at UV and normal seams; the body's parts are its connected
+/// components).
 ///
 /// **Motion.** One animation (the only one, or the one named
 /// `GltfReadOptions::animation`) with channels on
@@ -27,12 +28,24 @@
 /// and weights, as the specification allows. A file without an animation is
 /// a static body.
 ///
-/// **Refused, with what to do:** skinning (a chosen mesh node with a "skin":
-/// export the motion baked as shape keys / morph targets, or an OBJ per
-/// frame; JOINTS_0 / WEIGHTS_0 without a skin are ignored), any "extensionsRequired"
-/// (Draco, meshopt, quantization, ...), points and lines, animation
-/// channels on a "pointer" or unknown path, several animations without a
-/// name chosen, external buffers given by absolute path or a URL.
+/// **Skinning** (a mesh node with a "skin", what character exporters write):
+/// linear blend skinning as the specification defines it, after the morph
+/// targets: vertex = Σᵢ wᵢ Gᵢ Bᵢ x, over the vertex's joints i (JOINTS_n /
+/// WEIGHTS_n, n = 0, 1, ..., four per set), Gᵢ the joint node's global
+/// transform at the time (its animated TRS and its parents'), Bᵢ its inverse
+/// bind matrix (skin.inverseBindMatrices, MAT4 float32; identity when
+/// absent); the skinned node's own transform is ignored, as the
+/// specification asks. Checked: every joint a node, JOINTS_n unsigned
+/// byte/short, WEIGHTS_n float32 or normalised unsigned byte/short, no
+/// negative weight, a used joint index inside the skin, each vertex's
+/// weights summing to 1 within 0.02 (then rescaled to 1: 8-bit weights are
+/// off by up to 0.008), inverse bind matrices' last row (0, 0, 0, 1).
+///
+/// **Refused, with what to do:** any "extensionsRequired" (Draco, meshopt,
+/// quantization, ...), points and lines, animation channels on a "pointer"
+/// or unknown path, several animations without a name chosen, external
+/// buffers given by absolute path or a URL. JOINTS_n / WEIGHTS_n of a node
+/// without a skin are ignored.
 ///
 /// **Checked** before use: the GLB header and chunks (version, lengths,
 /// the JSON chunk first), every index into buffers, bufferViews, accessors,
@@ -78,12 +91,23 @@ struct GltfAnimatedMesh {
     Vec3 scale = Vec3::Ones();
     std::vector<double> weights;  ///< the node's (or its mesh's) default morph weights
   };
+  /// A skin: the node of each joint and its inverse bind matrix.
+  struct Skin {
+    std::vector<int> joints;
+    std::vector<std::array<double, 16>> inverse_bind;  ///< per joint, column-major
+  };
   /// One primitive of one mesh node: vertices [first_vertex, first_vertex + base.size()).
   struct Part {
     int node = 0;
+    int skin = -1;  ///< index into skins; -1: moved by the node's transform
     int first_vertex = 0;
     std::vector<Vec3> base;
     std::vector<std::vector<Vec3>> targets;  ///< per morph target, per vertex
+    /// Skinned parts: vertex v's joints (indices into the skin's joints) and
+    /// weights (summing to 1) are entries [influence_start[v],
+    /// influence_start[v + 1]) of influence_joint and influence_weight.
+    std::vector<int> influence_start, influence_joint;
+    std::vector<double> influence_weight;
   };
   enum class Path { Translation, Rotation, Scale, Weights };
   enum class Interpolation { Step, Linear, CubicSpline };
@@ -98,6 +122,7 @@ struct GltfAnimatedMesh {
     int width = 0;
   };
   std::vector<Node> nodes;
+  std::vector<Skin> skins;
   std::vector<Part> parts;
   std::vector<Channel> channels;
 };
