@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "knitforge/geometry/mesh_measures.h"
 
 namespace knitforge {
@@ -78,6 +81,46 @@ TEST(CollisionFreeStep, AVertexOnAStillFaceIsNotHeldBackByAFastFaceFarAway) {
   // Skipped vertices count as free.
   EXPECT_EQ(collision_free_step(body, end, x, x, {0, 1}, &per_vertex), 1.0);
   EXPECT_EQ(per_vertex[1], 1.0);
+}
+
+// Many vertices (enough for the threaded search, ranges on all hardware
+// threads): the fraction of the whole set is the smallest of the vertices'
+// own fractions, each found alone, wherever the limiting vertex lies (the
+// first, a middle or the last range), for a still and a moving body.
+TEST(CollisionFreeStep, ManyVerticesGiveTheSmallestOfTheirOwnFractions) {
+  const TriMesh m = floor_triangles(true);
+  const KinematicBody body(m);
+  std::vector<Vec3> end = m.vertices;
+  for (int k = 0; k < 3; ++k) end[k] += Vec3(0, 0, 0.5);  // the floor rises 0.5 mm
+  const int n = 5000;
+  Eigen::VectorXd x0(3 * n), x1(3 * n);
+  for (int v = 0; v < n; ++v) {
+    // Scattered over the floor at 1 to 3 mm, drifting down by 0.5 to 1.5 mm.
+    const double a = 0.001 * v;
+    x0.segment<3>(3 * v) = Vec3(-4 + 8 * std::fmod(7.3 * a, 1.0), -4 + 8 * std::fmod(3.1 * a, 1.0), 1 + 2 * std::fmod(5.7 * a, 1.0));
+    x1.segment<3>(3 * v) = x0.segment<3>(3 * v) - Vec3(0, 0, 0.5 + std::fmod(11.9 * a, 1.0));
+  }
+  for (const int limiting : {0, n / 2, n - 1}) {
+    Eigen::VectorXd y1 = x1;
+    y1.segment<3>(3 * limiting) = x0.segment<3>(3 * limiting) - Vec3(0, 0, 4.0);  // through the floor
+    double still = 1.0, moving = 1.0;
+    for (int v = 0; v < n; ++v) {
+      const Eigen::VectorXd a = x0.segment<3>(3 * v), b = y1.segment<3>(3 * v);
+      still = std::min(still, collision_free_step(body, a, b));
+      moving = std::min(moving, collision_free_step(body, end, a, b));
+    }
+    ASSERT_LT(still, 1.0);
+    EXPECT_EQ(collision_free_step(body, x0, y1), still) << "limiting vertex " << limiting;
+    EXPECT_EQ(collision_free_step(body, end, x0, y1), moving) << "limiting vertex " << limiting;
+    std::vector<double> per_vertex;
+    EXPECT_EQ(collision_free_step(body, end, x0, y1, {}, &per_vertex), moving);
+    ASSERT_EQ(per_vertex.size(), static_cast<size_t>(n));
+    for (const int v : {0, 1, n / 2, limiting, n - 1}) {
+      const Eigen::VectorXd a = x0.segment<3>(3 * v), b = y1.segment<3>(3 * v);
+      std::vector<double> own;
+      EXPECT_EQ(per_vertex[v], collision_free_step(body, end, a, b, {}, &own)) << "vertex " << v;
+    }
+  }
 }
 
 }  // namespace

@@ -126,6 +126,39 @@ TEST(ContactCandidates, AVertexNearTwoPartsHasAPairWithEach) {
   EXPECT_NEAR((f[1].tangent.transpose() * Vec3::UnitX()).norm(), 0.0, 1e-12);
 }
 
+// Many vertices (the threaded search, ranges on all hardware threads): the
+// pairs are those of each vertex searched alone, in vertex order, pins left
+// out.
+TEST(ContactCandidates, ManyVerticesGiveEachVertexsPairsInOrder) {
+  const KinematicBody body(floor_and_wall(0.0));
+  const int n = 6000;
+  Eigen::VectorXd x(3 * n);
+  std::vector<char> skip(n, 0);
+  for (int v = 0; v < n; ++v) {
+    const double a = 0.001 * v;  // scattered near the corner, some out of reach
+    x.segment<3>(3 * v) = Vec3(-1.5 * std::fmod(7.3 * a, 1.0), 20 * std::fmod(3.1 * a, 1.0) - 10,
+                               1.2 * std::fmod(5.7 * a, 1.0));
+    skip[v] = v % 97 == 0;
+  }
+  const std::vector<ContactPair> pairs = find_contact_candidates(body, x, 0.5, skip);
+  std::vector<ContactPair> want;
+  for (int v = 0; v < n; ++v) {
+    if (skip[v]) continue;
+    for (ContactPair p : find_contact_candidates(body, x.segment<3>(3 * v), 0.5)) {
+      p.vertex = v;
+      want.push_back(p);
+    }
+  }
+  ASSERT_GT(want.size(), 1000u);
+  ASSERT_EQ(pairs.size(), want.size());
+  for (size_t k = 0; k < want.size(); ++k) {
+    ASSERT_EQ(pairs[k].vertex, want[k].vertex) << k;
+    ASSERT_EQ(pairs[k].body.part, want[k].body.part) << k;
+    ASSERT_EQ(pairs[k].body.face, want[k].body.face) << k;
+    ASSERT_EQ(pairs[k].body.distance2, want[k].body.distance2) << k;
+  }
+}
+
 // A sheet lying on the floor, its edge 0.3 mm from the wall; the wall moves
 // 3 mm into it over 20 steps, pushing it along the floor with the edge
 // vertices in the corner, near both parts. After every step every vertex is

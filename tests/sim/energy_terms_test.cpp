@@ -189,5 +189,55 @@ TEST(AssembledEnergy, MeshGradientAndHessianMatchFiniteDifferences) {
   test::expect_derivatives_match(fb, flat, 1e-6, 1e-5);
 }
 
+// A sheet large enough for the threaded path of add_element_energies()
+// (2048 elements and more, in blocks of 8192): values and gradients are bit
+// for bit those of a serial loop over the elements in order, for both
+// terms, and so is the (serial) Hessian path.
+TEST(AssembledEnergy, ThreadedSumsAreTheSerialLoopsBits) {
+  const SimModel model = build_sim_model(test::knit_sheet(100, 45, 1.25, 1.0), KnitParams{});
+  ASSERT_GT(model.elements.size(), 8192u);
+  ASSERT_GE(model.hinges.size(), 2048u);
+  const int n = model.num_vertices();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Eigen::VectorXd x = test::flatten(model.rest_positions);
+  for (int k = 0; k < 3 * n; ++k) x[k] = x[k] * 1.05 + u(rng);
+  const auto pattern = build_hessian_pattern(model);
+  for (const Derivatives what : {Derivatives::Value, Derivatives::Gradient, Derivatives::Hessian}) {
+    // Some other term already in the evaluation: the sums add to it.
+    EnergyEval membrane(n, what, pattern), bending(n, what, pattern), serial(n, what, pattern);
+    for (EnergyEval* e : {&membrane, &bending, &serial}) {
+      e->value = 0.1;
+      if (what != Derivatives::Value) e->gradient.setConstant(0.01);
+    }
+    EnergyEval serial_bending = serial;
+    add_membrane_energy(model, x, PsdProjection::Clamp, membrane);
+    add_bending_energy(model, x, bending, PsdProjection::Clamp);
+    const auto p = [&](int v) { return Vec3(x.segment<3>(3 * v)); };
+    for (const MembraneElement& e : model.elements) {
+      const ElementEnergy<3> el =
+          membrane_element_energy(p(e.v[0]), p(e.v[1]), p(e.v[2]), e, model.materials[e.material], what);
+      serial.value += el.value;
+      if (what == Derivatives::Value) continue;
+      for (int k = 0; k < 3; ++k) serial.add_gradient(e.v[k], el.gradient.segment<3>(3 * k));
+      if (what == Derivatives::Hessian) serial.add_element_hessian<3>(e.v, el.hessian);
+    }
+    for (const BendingHinge& h : model.hinges) {
+      const ElementEnergy<4> el =
+          hinge_element_energy(p(h.v[0]), p(h.v[1]), p(h.v[2]), p(h.v[3]), h, what, PsdProjection::Clamp);
+      serial_bending.value += el.value;
+      if (what == Derivatives::Value) continue;
+      for (int k = 0; k < 4; ++k) serial_bending.add_gradient(h.v[k], el.gradient.segment<3>(3 * k));
+      if (what == Derivatives::Hessian) serial_bending.add_element_hessian<4>(h.v, el.hessian);
+    }
+    EXPECT_EQ(membrane.value, serial.value);
+    EXPECT_EQ(bending.value, serial_bending.value);
+    EXPECT_TRUE(membrane.gradient == serial.gradient);
+    EXPECT_TRUE(bending.gradient == serial_bending.gradient);
+    EXPECT_TRUE(membrane.hessian_values == serial.hessian_values);
+    EXPECT_TRUE(bending.hessian_values == serial_bending.hessian_values);
+  }
+}
+
 }  // namespace
 }  // namespace knitforge

@@ -9,6 +9,7 @@
 #include <Eigen/SVD>
 
 #include "knitforge/util/errors.h"
+#include "knitforge/util/parallel_ranges.h"
 
 namespace knitforge {
 
@@ -115,12 +116,13 @@ IcpResult align_to_surface(std::span<const Vec3> points, const SurfaceBvh& targe
   // weighted RMS distance. Each search starts from the face the entry held
   // before (an earlier round's: the same answer, found faster;
   // SurfaceBvh::closest_point()).
+  // The searches run on all hardware threads; the sum is taken in order.
   auto match = [&](const RigidTransform& T, std::vector<ClosestPoint>& cp) {
+    parallel_ranges(n, 1024, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) cp[i] = target.closest_point(T.apply(points[i]), cp[i].face);
+    });
     double sum = 0;
-    for (size_t i = 0; i < n; ++i) {
-      cp[i] = target.closest_point(T.apply(points[i]), cp[i].face);
-      sum += w(i) * cp[i].distance * cp[i].distance;
-    }
+    for (size_t i = 0; i < n; ++i) sum += w(i) * cp[i].distance * cp[i].distance;
     return std::sqrt(sum / total);
   };
   // The quadratic model of f = 1/2 sum w d^2 for the motion x -> dR (x -

@@ -75,7 +75,9 @@ struct IcpResult {
 /// its target (on a free hemisphere 0.87 a round, 30 rounds without
 /// converging; with the Newton matrix 10). Stops (converged) when the relative
 /// decrease is below `tolerance` in two rounds in a row or no step
-/// decreases it; not converged after max_iterations rounds. Deterministic.
+/// decreases it; not converged after max_iterations rounds. Deterministic
+/// (the closest points are searched on all hardware threads,
+/// util/parallel_ranges.h, the sums taken in point order).
 /// \param weights empty (all 1) or one weight >= 0 per point, not all zero.
 /// \throw InvalidInput for no points, non-finite points, bad weights or
 ///        options; as SurfaceBvh for a bad surface.

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "knitforge/geometry/geodesic_propagation.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/parallel_ranges.h"
 #include "knitforge/util/union_find.h"
 
 namespace knitforge {
@@ -217,37 +216,10 @@ bool split_run(const detail::GeodesicGeometry& g, const GeodesicSource& source, 
   neg.set_blocked(&blocked_neg);
   pos.add_source(source);  // (throws for a bad source before any thread starts)
   neg.add_source(source);
-  bool threaded = false;
-  if (std::thread::hardware_concurrency() > 1) {
-    std::exception_ptr error;
-    std::thread worker;
-    try {
-      worker = std::thread([&neg, &error] {
-        try {
-          neg.run();
-        } catch (...) {
-          error = std::current_exception();
-        }
-      });
-      threaded = true;
-    } catch (const std::system_error&) {
-      threaded = false;  // no thread available: run both here
-    }
-    if (threaded) {
-      try {
-        pos.run();
-      } catch (...) {
-        worker.join();
-        throw;
-      }
-      worker.join();
-      if (error) std::rethrow_exception(error);
-    }
-  }
-  if (!threaded) {
-    pos.run();
-    neg.run();
-  }
+  // Concurrently when the machine has more than one hardware thread.
+  parallel_ranges(2, 2, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) (k == 0 ? pos : neg).run();
+  });
   const std::vector<double>& dp = pos.distance();
   const std::vector<double>& dn = neg.distance();
   out.distance.assign(mesh.num_vertices(), kInf);

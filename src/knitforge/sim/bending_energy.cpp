@@ -81,17 +81,14 @@ ElementEnergy<4> hinge_element_energy(const Vec3& x0, const Vec3& x1, const Vec3
 }
 
 void add_bending_energy(const SimModel& model, const Eigen::VectorXd& x, EnergyEval& out, PsdProjection projection) {
-  const Derivatives what = out.wants_hessian()    ? Derivatives::Hessian
-                           : out.wants_gradient() ? Derivatives::Gradient
-                                                  : Derivatives::Value;
-  for (const BendingHinge& h : model.hinges) {
-    const ElementEnergy<4> el = hinge_element_energy(x.segment<3>(3 * h.v[0]), x.segment<3>(3 * h.v[1]),
-                                                     x.segment<3>(3 * h.v[2]), x.segment<3>(3 * h.v[3]), h, what, projection);
-    out.value += el.value;
-    if (what == Derivatives::Value) continue;
-    for (int k = 0; k < 4; ++k) out.add_gradient(h.v[k], el.gradient.segment<3>(3 * k));
-    if (what == Derivatives::Hessian) out.add_element_hessian<4>(h.v, el.hessian);
-  }
+  add_element_energies<4>(
+      model.hinges.size(),
+      [&](std::size_t i, Derivatives what) {
+        const BendingHinge& h = model.hinges[i];
+        return hinge_element_energy(x.segment<3>(3 * h.v[0]), x.segment<3>(3 * h.v[1]), x.segment<3>(3 * h.v[2]),
+                                    x.segment<3>(3 * h.v[3]), h, what, projection);
+      },
+      [&](std::size_t i) { return model.hinges[i].v; }, out);
 }
 
 }  // namespace knitforge

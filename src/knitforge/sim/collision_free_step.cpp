@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <mutex>
+
+#include "knitforge/util/parallel_ranges.h"
 
 namespace knitforge {
 
@@ -31,14 +35,27 @@ double distance_at(const TriMesh& start, const std::vector<Vec3>* end, const Aab
   return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
 }
 
+// The smallest of range(first, last) over ranges covering [0, n), the
+// ranges on all hardware threads.
+double smallest_over_ranges(size_t n, const std::function<double(int, int)>& range) {
+  double smallest = 1.0;
+  std::mutex m;
+  parallel_ranges(n, 2048, [&](size_t begin, size_t end) {
+    const double t = range(static_cast<int>(begin), static_cast<int>(end));
+    const std::lock_guard<std::mutex> lock(m);
+    smallest = std::min(smallest, t);
+  });
+  return smallest;
+}
+
 // The largest fraction t (< t_limit) of the move x0 -> x1 over which a
 // vertex of a body at rest keeps kKeep of its start distance: conservative
-// advancement, the distance changing at most at the vertex's speed.
-double advance(const TriMesh& start, const AabbTree& tree, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
-               const std::vector<char>& skip) {
+// advancement, the distance changing at most at the vertex's speed; for the
+// vertices [first, last).
+double advance_range(const TriMesh& start, const AabbTree& tree, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
+                     const std::vector<char>& skip, int first, int last) {
   double t_min = 1.0;
-  const int n = static_cast<int>(x0.size() / 3);
-  for (int v = 0; v < n && t_min > 0; ++v) {
+  for (int v = first; v < last && t_min > 0; ++v) {
     if (!skip.empty() && skip[v]) continue;
     const Vec3 p0 = x0.segment<3>(3 * v);
     const Vec3 dp = x1.segment<3>(3 * v) - p0;
@@ -77,13 +94,12 @@ double advance(const TriMesh& start, const AabbTree& tree, const Eigen::VectorXd
 // the still part.
 // With per_vertex, every vertex's own fraction is stored there (and the
 // search does not stop at the first vertex that allows none).
-double advance_moving(const TriMesh& start, const std::vector<Vec3>& end, const AabbTree& swept,
-                      const std::vector<double>& face_speed, double body_speed, const Eigen::VectorXd& x0,
-                      const Eigen::VectorXd& x1, const std::vector<char>& skip, std::vector<double>* per_vertex) {
+double advance_moving_range(const TriMesh& start, const std::vector<Vec3>& end, const AabbTree& swept,
+                            const std::vector<double>& face_speed, double body_speed, const Eigen::VectorXd& x0,
+                            const Eigen::VectorXd& x1, const std::vector<char>& skip, std::vector<double>* per_vertex,
+                            int first, int last) {
   double t_all = 1.0;
-  const int n = static_cast<int>(x0.size() / 3);
-  if (per_vertex) per_vertex->assign(n, 1.0);
-  for (int v = 0; v < n && (per_vertex || t_all > 0); ++v) {
+  for (int v = first; v < last && (per_vertex || t_all > 0); ++v) {
     if (!skip.empty() && skip[v]) continue;
     double t_min = per_vertex ? 1.0 : t_all;
     const Vec3 p0 = x0.segment<3>(3 * v);
@@ -123,6 +139,27 @@ double advance_moving(const TriMesh& start, const std::vector<Vec3>& end, const 
     if (per_vertex) (*per_vertex)[v] = t_min;
   }
   return t_all;
+}
+
+// The searches above over all vertices, in ranges on all hardware threads,
+// each range bounded by its own smallest fraction so far: a vertex stopped
+// by that bound ends at or above it (t only grows), so the minimum over the
+// ranges is the serial search's exactly.
+double advance(const TriMesh& start, const AabbTree& tree, const Eigen::VectorXd& x0, const Eigen::VectorXd& x1,
+               const std::vector<char>& skip) {
+  return smallest_over_ranges(static_cast<size_t>(x0.size() / 3), [&](int first, int last) {
+    return advance_range(start, tree, x0, x1, skip, first, last);
+  });
+}
+
+double advance_moving(const TriMesh& start, const std::vector<Vec3>& end, const AabbTree& swept,
+                      const std::vector<double>& face_speed, double body_speed, const Eigen::VectorXd& x0,
+                      const Eigen::VectorXd& x1, const std::vector<char>& skip, std::vector<double>* per_vertex) {
+  const int n = static_cast<int>(x0.size() / 3);
+  if (per_vertex) per_vertex->assign(n, 1.0);
+  return smallest_over_ranges(static_cast<size_t>(n), [&](int first, int last) {
+    return advance_moving_range(start, end, swept, face_speed, body_speed, x0, x1, skip, per_vertex, first, last);
+  });
 }
 
 }  // namespace

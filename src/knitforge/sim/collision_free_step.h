@@ -10,7 +10,8 @@
 /// displacements), so it advances by Δt = 0.9 (d - d₀/10) / l and measures
 /// the distance again. Distances are exact point-to-triangle distances
 /// through the body's tree. Deterministic; the result is the minimum over
-/// vertices.
+/// vertices (searched in ranges on all hardware threads, util/parallel_ranges.h:
+/// the same value as one thread's search).
 
 #include <vector>
 

@@ -26,7 +26,8 @@ struct ContactPair {
 
 /// Pairs of vertices of x (3n, mm) closer than dhat_mm to the body, in
 /// vertex order and, per vertex, in part order; vertices with skip[v] != 0
-/// (pins) are left out.
+/// (pins) are left out. The vertices are searched on all hardware threads
+/// (util/parallel_ranges.h); the result does not depend on how many.
 std::vector<ContactPair> find_contact_candidates(const KinematicBody& body, const Eigen::VectorXd& x, double dhat_mm,
                                                  const std::vector<char>& skip = {});
 

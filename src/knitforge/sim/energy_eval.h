@@ -13,6 +13,7 @@
 /// iteration and time step, and terms add their element blocks straight into
 /// the matrix's value array (no triplet sort).
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <span>
@@ -22,6 +23,7 @@
 
 #include "knitforge/geometry/sparse_solver.h"
 #include "knitforge/geometry/vec.h"
+#include "knitforge/util/parallel_ranges.h"
 
 namespace knitforge {
 
@@ -29,6 +31,14 @@ struct SimModel;
 
 /// The lower triangle of a symmetric 3n x 3n matrix made of 3x3 vertex
 /// blocks, in compressed column form (what CHOLMOD reads).
+/// Value, gradient and Hessian of one element of K vertices (3K unknowns).
+template <int K>
+struct ElementEnergy {
+  double value = 0.0;
+  Eigen::Matrix<double, 3 * K, 1> gradient = Eigen::Matrix<double, 3 * K, 1>::Zero();
+  Eigen::Matrix<double, 3 * K, 3 * K> hessian = Eigen::Matrix<double, 3 * K, 3 * K>::Zero();
+};
+
 class HessianPattern {
  public:
   /// Pattern with the diagonal blocks of `num_vertices` vertices and the
@@ -99,5 +109,60 @@ struct EnergyEval {
   /// Adds g to the gradient entries of vertex v.
   void add_gradient(int v, const Vec3& g) { gradient.segment<3>(3 * v) += g; }
 };
+
+/// Adds the energies of n elements of K vertices to `out`:
+/// element(i, what) returns element i's ElementEnergy<K> with the
+/// derivatives `what`, and `vertices(i)` its K vertices. The values and
+/// gradients of large sets are computed on all hardware threads
+/// (util/parallel_ranges.h), a block at a time, and added to `out` in
+/// element order, so `out` holds the same bits as a serial loop gives.
+/// Hessians are computed and added serially: held per element they cost
+/// more memory (1.2 kB for 4 vertices) than the threads saved (measured on
+/// the free hemisphere, docs/benchmarks.md).
+template <int K, class Element, class Vertices>
+void add_element_energies(std::size_t n, const Element& element, const Vertices& vertices, EnergyEval& out) {
+  const Derivatives what = out.wants_hessian()    ? Derivatives::Hessian
+                           : out.wants_gradient() ? Derivatives::Gradient
+                                                  : Derivatives::Value;
+  // Below this many elements the threads cost more than they save.
+  constexpr std::size_t kParallelFrom = 2048, kBlock = 8192;
+  if (what == Derivatives::Hessian || n < kParallelFrom) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::array<int, K> v = vertices(i);
+      const ElementEnergy<K> e = element(i, what);
+      out.value += e.value;
+      if (what == Derivatives::Value) continue;
+      for (int k = 0; k < K; ++k) out.add_gradient(v[k], e.gradient.template segment<3>(3 * k));
+      if (what == Derivatives::Hessian) out.add_element_hessian<K>(v, e.hessian);
+    }
+    return;
+  }
+  // Kept between calls (one set per calling thread): a solve evaluates the
+  // same model hundreds of times, and fresh pages cost more than the copy.
+  // The lambda below reaches them through references: a thread_local named
+  // in it would be the worker thread's own, empty one.
+  thread_local std::vector<double> kept_values;
+  thread_local std::vector<Eigen::Matrix<double, 3 * K, 1>> kept_gradients;
+  std::vector<double>& values = kept_values;
+  std::vector<Eigen::Matrix<double, 3 * K, 1>>& gradients = kept_gradients;
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t count = std::min(kBlock, n - first);
+    values.resize(count);
+    if (what == Derivatives::Gradient) gradients.resize(count);
+    parallel_ranges(count, kParallelFrom, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const ElementEnergy<K> e = element(first + i, what);
+        values[i] = e.value;
+        if (what == Derivatives::Gradient) gradients[i] = e.gradient;
+      }
+    });
+    for (std::size_t i = 0; i < count; ++i) {
+      out.value += values[i];
+      if (what == Derivatives::Value) continue;
+      const std::array<int, K> v = vertices(first + i);
+      for (int k = 0; k < K; ++k) out.add_gradient(v[k], gradients[i].template segment<3>(3 * k));
+    }
+  }
+}
 
 }  // namespace knitforge

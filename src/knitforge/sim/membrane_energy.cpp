@@ -97,18 +97,14 @@ ElementEnergy<3> membrane_element_energy(const Vec3& x0, const Vec3& x1, const V
 
 void add_membrane_energy(const SimModel& model, const Eigen::VectorXd& x, PsdProjection projection,
                          EnergyEval& out) {
-  const Derivatives what = out.wants_hessian()    ? Derivatives::Hessian
-                           : out.wants_gradient() ? Derivatives::Gradient
-                                                  : Derivatives::Value;
-  for (const MembraneElement& e : model.elements) {
-    const ElementEnergy<3> el = membrane_element_energy(x.segment<3>(3 * e.v[0]), x.segment<3>(3 * e.v[1]),
-                                                        x.segment<3>(3 * e.v[2]), e, model.materials[e.material],
-                                                        what, projection);
-    out.value += el.value;
-    if (what == Derivatives::Value) continue;
-    for (int k = 0; k < 3; ++k) out.add_gradient(e.v[k], el.gradient.segment<3>(3 * k));
-    if (what == Derivatives::Hessian) out.add_element_hessian<3>(e.v, el.hessian);
-  }
+  add_element_energies<3>(
+      model.elements.size(),
+      [&](std::size_t i, Derivatives what) {
+        const MembraneElement& e = model.elements[i];
+        return membrane_element_energy(x.segment<3>(3 * e.v[0]), x.segment<3>(3 * e.v[1]), x.segment<3>(3 * e.v[2]),
+                                       e, model.materials[e.material], what, projection);
+      },
+      [&](std::size_t i) { return model.elements[i].v; }, out);
 }
 
 MembraneStress membrane_stress(const Vec3& x0, const Vec3& x1, const Vec3& x2, const MembraneElement& element,

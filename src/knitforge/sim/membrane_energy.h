@@ -26,14 +26,6 @@
 
 namespace knitforge {
 
-/// Value, gradient and Hessian of one element of K vertices (3K unknowns).
-template <int K>
-struct ElementEnergy {
-  double value = 0.0;
-  Eigen::Matrix<double, 3 * K, 1> gradient = Eigen::Matrix<double, 3 * K, 1>::Zero();
-  Eigen::Matrix<double, 3 * K, 3 * K> hessian = Eigen::Matrix<double, 3 * K, 3 * K>::Zero();
-};
-
 /// Energy of one membrane element at corner positions x0, x1, x2 (mm); the
 /// gradient and Hessian are filled when `what` asks for them, the Hessian
 /// projected as `projection` says.
