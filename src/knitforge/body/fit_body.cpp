@@ -16,6 +16,7 @@
 #include "knitforge/geometry/cotan_laplacian.h"
 #include "knitforge/geometry/mesh_measures.h"
 #include "knitforge/util/errors.h"
+#include "knitforge/util/parallel_ranges.h"
 
 namespace knitforge {
 
@@ -77,11 +78,17 @@ class Fitter {
       std::vector<int> ids;
       std::vector<Vec3> normals;
       std::vector<double> res;
+      // The searches on all cores; the sums below in vertex order.
+      std::vector<ClosestPoint> closest(static_cast<size_t>(model_.num_vertices()));
+      parallel_ranges(closest.size(), 1024, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+          if (weight_[i] > 0.0) closest[i] = scan_bvh_->closest_point(L.posed.vertices[i]);
+      });
       for (int i = 0; i < model_.num_vertices(); ++i) {
         const double w = weight_[static_cast<size_t>(i)];
         if (w <= 0.0) continue;
         const Vec3& v = L.posed.vertices[static_cast<size_t>(i)];
-        const ClosestPoint cp = scan_bvh_->closest_point(v);
+        const ClosestPoint& cp = closest[static_cast<size_t>(i)];
         if (cp.distance > dmax) {
           L.cost += w * dmax * dmax;
           continue;
@@ -118,8 +125,13 @@ class Fitter {
         double plane;
       };
       std::vector<Pair> pairs;
-      for (const Vec3& p : cloud_) {
-        const ClosestPoint cp = bvh.closest_point(p);
+      std::vector<ClosestPoint> closest(cloud_.size());
+      parallel_ranges(cloud_.size(), 1024, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) closest[i] = bvh.closest_point(cloud_[i]);
+      });
+      for (size_t i = 0; i < cloud_.size(); ++i) {
+        const Vec3& p = cloud_[i];
+        const ClosestPoint& cp = closest[i];
         if (cp.distance > dmax) {
           L.cost += w * dmax * dmax;
           continue;
