@@ -173,24 +173,8 @@ TEST(Friction, SlideConvergesAsTheTimeStepIsRefined) {
 // it swings down like a chain. Returns the mean height of its free end after
 // T = `steps` x h seconds.
 double swinging_strip_tip_mm(double spacing_mm, int steps, double duration_s) {
-  const double length = 20.0, width = 4.0;
-  const int cols = static_cast<int>(std::lround(length / spacing_mm)) + 1;
-  const int rows = static_cast<int>(std::lround(width / spacing_mm));
-  KnitMaterial m = default_single_jersey();
-  m.course = TensionCurve{{{0.0, 2e4}}, 2e4};
-  m.wale = TensionCurve{{{0.0, 2e4}}, 2e4};
-  m.shear = TensionCurve{{{0.0, 5e3}}, 5e3};
-  m.bending_course_un_m = 1.0;
-  m.bending_wale_un_m = 1.0;
-  SimModelOptions mo;
-  mo.materials = {m};
-  SimModel model =
-      build_sim_model(test::knit_sheet(cols, rows, spacing_mm, spacing_mm), square_stitches(spacing_mm), mo);
-  for (int j = 0; j <= rows; ++j) {
-    model.pinned.push_back(j * (cols + 1));
-    model.pinned.push_back(j * (cols + 1) + 1);
-  }
-  std::sort(model.pinned.begin(), model.pinned.end());
+  const test::ClampedStrip strip = test::clamped_strip(spacing_mm, 1.0);
+  const SimModel& model = strip.model;
   SimWorkspace ws(model);
   StepOptions o;
   o.time_step_s = duration_s / steps;
@@ -201,9 +185,7 @@ double swinging_strip_tip_mm(double spacing_mm, int steps, double duration_s) {
     EXPECT_TRUE(r.converged) << "spacing " << spacing_mm << ", step " << k << " of " << steps << ": force " << r.max_force_mn << " mN after " << r.newton_iterations << " iterations";
     s = r.state;
   }
-  double tip = 0.0;
-  for (int j = 0; j <= rows; ++j) tip += s.positions_mm[3 * (j * (cols + 1) + cols) + 2];
-  return tip / (rows + 1);
+  return strip.tip_height_mm(s.positions_mm);
 }
 
 // Refining the time step of an elastic motion (the swinging strip above,

@@ -167,10 +167,7 @@ TEST(FrictionEnergy, DerivativesAndCoulombForce) {
 TEST(AssembledEnergy, MeshGradientAndHessianMatchFiniteDifferences) {
   SimModel model = build_sim_model(test::knit_sheet(3, 2, 1.25, 1.0), KnitParams{});
   const int n = model.num_vertices();
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-0.15, 0.15);
-  Eigen::VectorXd x = test::flatten(model.rest_positions);
-  for (int k = 0; k < 3 * n; ++k) x[k] = x[k] * 1.1 + u(rng);
+  const Eigen::VectorXd x = test::perturbed(model, 11, 1.1, 0.15);
   const auto pattern = build_hessian_pattern(model);
   auto f = [&](const Eigen::VectorXd& y) {
     EnergyEval ev(n, Derivatives::Hessian, pattern);
@@ -198,10 +195,7 @@ TEST(AssembledEnergy, ThreadedSumsAreTheSerialLoopsBits) {
   ASSERT_GT(model.elements.size(), 8192u);
   ASSERT_GE(model.hinges.size(), 2048u);
   const int n = model.num_vertices();
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  Eigen::VectorXd x = test::flatten(model.rest_positions);
-  for (int k = 0; k < 3 * n; ++k) x[k] = x[k] * 1.05 + u(rng);
+  const Eigen::VectorXd x = test::perturbed(model, 5, 1.05, 0.2);
   const auto pattern = build_hessian_pattern(model);
   for (const Derivatives what : {Derivatives::Value, Derivatives::Gradient, Derivatives::Hessian}) {
     // Some other term already in the evaluation: the sums add to it.

@@ -205,26 +205,10 @@ TEST(PureShear, HomogeneousPatchAndEnergy) {
 // tip deflection δ = q L⁴ / (8 D) for the load q per area and the rigidity D
 // per width along the strip. The membrane is made nearly inextensible.
 double cantilever_tip_error(double spacing_mm) {
-  const double length = 20.0, width = 4.0;
-  const int cols = static_cast<int>(std::lround(length / spacing_mm)) + 1;  // one clamped column
-  const int rows = static_cast<int>(std::lround(width / spacing_mm));
-  KnitParams p;
-  p.stitch_width = spacing_mm;
-  p.stitch_height = spacing_mm;
-  KnitMaterial m = default_single_jersey();
-  m.course = TensionCurve{{{0.0, 2e4}}, 2e4};
-  m.wale = TensionCurve{{{0.0, 2e4}}, 2e4};
-  m.shear = TensionCurve{{{0.0, 5e3}}, 5e3};
-  m.bending_course_un_m = 80.0;
-  m.bending_wale_un_m = 80.0;
-  SimModelOptions mo;
-  mo.materials = {m};
-  SimModel model = build_sim_model(test::knit_sheet(cols, rows, spacing_mm, spacing_mm), p, mo);
-  for (int j = 0; j <= rows; ++j) {
-    model.pinned.push_back(j * (cols + 1));
-    model.pinned.push_back(j * (cols + 1) + 1);
-  }
-  std::sort(model.pinned.begin(), model.pinned.end());
+  const double length = 20.0;
+  const test::ClampedStrip strip = test::clamped_strip(spacing_mm, 80.0, length);
+  const SimModel& model = strip.model;
+  const KnitMaterial& m = model.materials[0];
   SimWorkspace ws(model);
   EquilibriumOptions o;
   const double g = 9810.0;
@@ -232,9 +216,7 @@ double cantilever_tip_error(double spacing_mm) {
   o.newton.force_tolerance_mn = 1e-8;  // 1e-4 of a vertex's weight
   const EquilibriumResult r = solve_equilibrium(ws, test::flatten(model.rest_positions), nullptr, o);
   EXPECT_TRUE(r.converged) << r.stop_reason << " after " << r.iterations << " iterations, force " << r.max_force_mn;
-  double tip = 0.0;
-  for (int j = 0; j <= rows; ++j) tip += r.positions_mm[3 * (j * (cols + 1) + cols) + 2];
-  tip /= rows + 1;
+  const double tip = strip.tip_height_mm(r.positions_mm);
   const double q = areal_density_kg_mm2(m) * g;  // mN/mm²
   const double want = -q * std::pow(length, 4) / (8.0 * m.bending_course_un_m);
   std::printf("spacing %.2f: tip %.5f mm, beam theory %.5f mm, %d iterations, force %.3g mN\n", spacing_mm, tip, want, r.iterations, r.max_force_mn);
