@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +21,19 @@ using nlohmann::json;
 uint32_t u32(const std::string& s, size_t at) {
   uint32_t v = 0;
   for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<uint8_t>(s[at + static_cast<size_t>(k)]);
+  return v;
+}
+
+// The vertex coordinates of an OBJ file, x y z in order.
+std::vector<double> obj_vertices(const std::string& text) {
+  std::vector<double> v;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream l(line);
+    std::string tag;
+    double x, y, z;
+    if (l >> tag && tag == "v" && l >> x >> y >> z) v.insert(v.end(), {x, y, z});
+  }
   return v;
 }
 
@@ -128,19 +143,8 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   const json c2 = json::parse(slurp(path("again/cloth.json")));
   EXPECT_EQ(c2["scene"]["frames"], 3);
   EXPECT_EQ(c2["setup"]["body_vertices"], nb);
-  auto obj_vertices = [&](const std::string& file) {
-    std::vector<double> v;
-    std::istringstream in(slurp(file));
-    for (std::string line; std::getline(in, line);) {
-      std::istringstream l(line);
-      std::string tag;
-      double x, y, z;
-      if (l >> tag && tag == "v" && l >> x >> y >> z) v.insert(v.end(), {x, y, z});
-    }
-    return v;
-  };
   for (const char* f : {"frames/0001_body.obj", "frames/0003_body.obj"}) {
-    const std::vector<double> a = obj_vertices(path("out/") + f), b = obj_vertices(path("again/") + f);
+    const std::vector<double> a = obj_vertices(slurp(path("out/") + f)), b = obj_vertices(slurp(path("again/") + f));
     ASSERT_EQ(a.size(), b.size()) << f;
     ASSERT_EQ(a.size(), 3u * static_cast<size_t>(nb));
     double worst = 0;
@@ -159,6 +163,35 @@ TEST_F(ClothCli, SmallSleeveWritesEveryOutput) {
   EXPECT_NE(r3.err.find("no node or mesh of the scene is named 'arm' (names: 'body', 'garment')"), std::string::npos)
       << r3.err;
   EXPECT_FALSE(fs::exists(path("again5/cloth.json")));
+}
+
+// A skinned glTF body: the seed fuzz/make_gltf_seeds.py writes (a strip
+// whose hips move 10 mm along x over 1 s while its spine turns 90 degrees
+// about z; two joint sets, its node's own translation to be ignored). The
+// run lasts the animation, the body's frames are the skinned positions
+// (read_gltf_animation_test.cpp checks the same points), and a sheet far
+// above it, without gravity, stays where it is.
+TEST_F(ClothCli, SkinnedGltfBodyMovesByItsJoints) {
+  write("sheet.obj", "v 0 0 50\nv 10 0 50\nv 10 10 50\nv 0 10 50\nf 1 2 3\nf 1 3 4\n");
+  const std::string seed = std::string(KNITFORGE_TESTS_DIR) + "/../fuzz/corpus/fuzz_gltf_animation/skinned.glb";
+  write("skin.json", R"({"garment": {"mesh": "sheet.obj", "course_direction": [1, 0, 0]},
+                         "body": {"animation": ")" + seed + R"("},
+                         "frame_rate_hz": 4, "substeps": 1, "gravity_mm_s2": [0, 0, 0]})");
+  const CliRun r = run("cloth " + path("skin.json") + " -o " + path("skin"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(path("skin/cloth.json")));
+  EXPECT_EQ(c["scene"]["frames"], 4);
+  EXPECT_EQ(c["setup"]["body_vertices"], 4);
+  // Vertex k of an OBJ file written by the run is within 1e-4 mm of (x, y, z).
+  auto near = [&](const std::string& file, size_t k, double x, double y, double z) {
+    const std::vector<double> v = obj_vertices(slurp(path("skin/frames/") + file));
+    ASSERT_EQ(v.size(), 12u) << file;
+    EXPECT_LT(std::hypot(v[3 * k] - x, v[3 * k + 1] - y, v[3 * k + 2] - z), 1e-4) << file << " vertex " << k;
+  };
+  near("0000_body.obj", 3, 1, 1, 0);
+  near("0004_body.obj", 1, 11, 0, 0);  // the hips' only
+  near("0004_body.obj", 3, 10, 1, 0);  // half the hips, half the turned spine
+  near("0004_garment.obj", 2, 10, 10, 50);
 }
 
 // The built-in legging, small: the knee angle per frame, the signed
