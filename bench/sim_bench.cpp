@@ -156,6 +156,35 @@ void BM_ClothSleeve(benchmark::State& state) {
 }
 BENCHMARK(BM_ClothSleeve)->Args({130, 30})->Args({42, 3})->Unit(benchmark::kSecond)->Iterations(1);
 
+// The same scene by the projective-dynamics preview (ClothSolver::Preview),
+// the arm bending over the `frames` frames run: {42, 60} is the issue's
+// 20k-triangle garment for 60 frames. Counters: seconds per frame, rounds
+// per step, whether every step reached the preview's tolerance, and the
+// closest approach to the body mesh.
+void BM_ClothSleevePreview(benchmark::State& state) {
+  ArmMotionParams p;
+  p.sleeve_edge_mm = 0.1 * static_cast<double>(state.range(0));
+  const int frames = static_cast<int>(state.range(1));
+  const SleeveMesh sleeve = arm_sleeve_mesh(p);
+  SimModel model = build_sim_model(sleeve.mesh, sleeve.course_directions);
+  model.pinned = sleeve.attached;
+  std::vector<std::vector<Vec3>> poses;
+  for (int f = 0; f <= frames; ++f) poses.push_back(arm_body_mesh(p, arm_elbow_angle_deg(p, f, frames)).vertices);
+  ClothOptions o;
+  o.frames = frames;
+  o.solver = ClothSolver::Preview;
+  for (auto _ : state) {
+    const ClothResult r = simulate_cloth(model, arm_body_mesh(p, 0.0), poses, sleeve.attached, o);
+    state.counters["s_per_frame"] =
+        (r.seconds.factor + r.seconds.evaluate + r.seconds.max_step + r.measure_seconds) / frames;
+    state.counters["rounds_per_step"] = static_cast<double>(r.preview_iterations) / r.steps;
+    state.counters["converged"] = r.converged ? 1 : 0;
+    state.counters["min_distance_mm"] = r.min_distance_mm;
+  }
+  state.counters["triangles"] = model.num_elements();
+}
+BENCHMARK(BM_ClothSleevePreview)->Args({130, 30})->Args({42, 60})->Unit(benchmark::kSecond)->Iterations(1);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -252,6 +252,18 @@ json rounded(const std::vector<double>& v) {
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+// The preview's wall seconds under their own names (ClothFrame::seconds).
+json preview_timings_json(const NewtonTimings& t) {
+  return {{"assembly_and_factor_s", t.factor}, {"rounds_s", t.evaluate}, {"contacts_s", t.max_step}};
+}
+
+constexpr const char* kPreviewPenetration =
+    "preview (projective dynamics): contact is a projection onto the tangent planes of the body parts each vertex "
+    "was near at its step's start, so the body's non-penetration is not guaranteed; min_distance_mm is the smallest "
+    "unsigned distance of a free vertex to the body mesh over all frames as measured; for the built-in arm (leg), "
+    "min_arm_clearance_mm (min_leg_clearance_mm) is the smallest signed distance of a free vertex to the true "
+    "capsules (negative inside)";
+
 }  // namespace
 
 void add_cloth_command(CLI::App& app, Action& action) {
@@ -265,8 +277,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
     std::string scene, builtin, outdir;
     int frames = 0, substeps = 0;
     int quasi_newton = ClothOptions{}.quasi_newton.max_iterations;
+    int preview_iterations = ClothOptions{}.preview.max_iterations;
     double max_work = kMaxClothWork;
-    bool json = false;
+    bool json = false, preview = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md \"Cloth scene\")");
@@ -278,6 +291,14 @@ void add_cloth_command(CLI::App& app, Action& action) {
                   "L-BFGS iterations allowed per time step before its Newton solve (0 = Newton alone; docs/sim.md, "
                   "\"Solver\")")
       ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_flag("--preview", o->preview,
+               "The fast preview instead of the implicit solver: projective dynamics on a quadratic surrogate of the "
+               "material, contact by projection (docs/sim.md, \"Preview\"); not the FEM answer, and the body's "
+               "non-penetration is measured, not guaranteed");
+  cmd->add_option("--preview-iterations", o->preview_iterations,
+                  "With --preview: local-global rounds per time step at most")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--max-work", o->max_work,
                   "Refuse runs of more garment vertices x frames x substeps than this")
@@ -326,14 +347,19 @@ void add_cloth_command(CLI::App& app, Action& action) {
       co.newton.max_iterations = scene.max_newton_iterations;
       co.newton.force_tolerance_mn = scene.force_tolerance_mn;
       co.quasi_newton.max_iterations = o->quasi_newton;
-      note(fmt::format("cloth: {} ({} vertices, {} triangles; body {} vertices), {} frames at {} Hz x {} substeps ...",
+      co.solver = o->preview ? ClothSolver::Preview : ClothSolver::Implicit;
+      co.preview.max_iterations = o->preview_iterations;
+      const char* solver_name = o->preview ? "preview" : "implicit";
+      note(fmt::format("cloth: {} ({} vertices, {} triangles; body {} vertices), {} frames at {} Hz x {} substeps, {} "
+                       "solver ...",
                        scene.where, model.num_vertices(), model.num_elements(), L.body.num_vertices(), co.frames,
-                       co.frame_rate_hz, co.substeps));
+                       co.frame_rate_hz, co.substeps, solver_name));
       const Timer sim_timer;
       const ClothResult r = simulate_cloth(model, L.body, L.body_frames, L.attached, co, [&](const ClothFrame& f) {
         if (f.frame > 0 && (f.frame % 10 == 0 || f.frame == co.frames)) {
-          note(fmt::format("[{:3d} %] frame {}/{}: {} Newton iterations, closest {:.3g} mm, {:.1f} s",
-                           100 * f.frame / co.frames, f.frame, co.frames, f.newton_iterations, f.min_distance_mm,
+          note(fmt::format("[{:3d} %] frame {}/{}: {} {}, closest {:.3g} mm, {:.1f} s", 100 * f.frame / co.frames,
+                           f.frame, co.frames, o->preview ? f.preview_iterations : f.newton_iterations,
+                           o->preview ? "preview rounds" : "Newton iterations", f.min_distance_mm,
                            sim_timer.seconds()));
         }
       });
@@ -402,7 +428,11 @@ void add_cloth_command(CLI::App& app, Action& action) {
                      {"total", f.elastic_energy_uj + f.kinetic_energy_uj + f.gravity_energy_uj}}},
                    {"max_stress_kpa", smax},
                    {"max_sliding_mm", lmax},
-                   {"seconds", newton_timings_json(f.seconds)}};
+                   {"seconds", o->preview ? preview_timings_json(f.seconds) : newton_timings_json(f.seconds)}};
+        if (o->preview) {
+          fj["preview_iterations"] = f.preview_iterations;
+          fj["preview_last_move_mm"] = f.preview_last_move_mm;
+        }
         if (!L.joint_angle_deg.empty()) {
           fj[L.angle_key] = L.joint_angle_deg[f.frame];
           const double c = true_clearance(f);
@@ -462,7 +492,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
                              for (const KnitMaterial& k : model.materials) m.push_back(k.name);
                              return m;
                            }()}};
-      summary["result"] = {{"converged", r.converged},
+      summary["result"] = {{"solver", solver_name},
+                           {"converged", r.converged},
                            {"frames_not_converged", unconverged},
                            {"frames_at_iteration_limit", at_limit},
                            {"newton_iterations", r.newton_iterations},
@@ -472,7 +503,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"min_distance_mm", finite_or_null(r.min_distance_mm)},
                            {L.clearance_key.empty() ? "min_arm_clearance_mm" : L.clearance_key,
                             finite_or_null(min_clearance)},
-                           {"penetration",
+                           {"preview_iterations", r.preview_iterations},
+                           {"penetration", o->preview ? kPreviewPenetration :
                             "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
                             "all frames (> 0 by the barrier and collision-free steps, which keep every vertex on the "
                             "side of the body it starts on); for the built-in arm (leg), min_arm_clearance_mm "
@@ -486,7 +518,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {"sliding_measure",
                             "per vertex: distance on the body between its contact point and the point where it first "
                             "touched (mm; touching = within sliding_distance_mm)"}};
-      summary["seconds"] = {{"simulation", sim_seconds}, {"newton", newton_timings_json(r.seconds)},
+      summary["seconds"] = {{"simulation", sim_seconds},
+                            {o->preview ? "preview" : "newton",
+                             o->preview ? preview_timings_json(r.seconds) : newton_timings_json(r.seconds)},
                             {"measures", r.measure_seconds}};
       summary["outputs"] = {{"animation", "animation.glb (garment and body, morph targets, LINEAR)"},
                             {"sequence", "frames/NNNN_garment.obj, frames/NNNN_body.obj"},
@@ -517,12 +551,18 @@ void add_cloth_command(CLI::App& app, Action& action) {
       ReportHtmlOptions ro;
       ro.title = "cloth: " + scene.where;
       write_report_html(o->outdir, ro);
-      note(fmt::format("{} frames, {} steps, {} Newton iterations, {} L-BFGS, {} factorisations{}; closest "
+      note(fmt::format("{} frames, {} steps, {}, {} factorisations{}; closest "
                        "distance to the body {:.3g} mm; largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
-                       co.frames, r.steps, r.newton_iterations, r.quasi_newton_iterations, r.factorizations,
-                       unconverged ? fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
-                                                 unconverged, at_limit)
-                                   : "",
+                       co.frames, r.steps,
+                       o->preview ? fmt::format("{} preview rounds (projective dynamics)", r.preview_iterations)
+                                  : fmt::format("{} Newton iterations, {} L-BFGS", r.newton_iterations,
+                                                r.quasi_newton_iterations),
+                       r.factorizations,
+                       !unconverged ? ""
+                       : o->preview ? fmt::format(" ({} frames with a step whose rounds did not reach the tolerance)",
+                                                  unconverged)
+                                    : fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
+                                                  unconverged, at_limit),
                        r.min_distance_mm, stress_top, sliding_top, all.seconds(), o->outdir));
       return 0;
     };

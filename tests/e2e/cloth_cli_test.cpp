@@ -208,6 +208,33 @@ TEST_F(ClothCli, QuasiNewtonZeroIsNewtonAlone) {
   EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
 }
 
+// --preview: projective dynamics instead of Newton; labelled so in cloth.json,
+// the rounds counted, every output written, and the sleeve kept outside the
+// true arm (by at most the meshes' chord sag, as the implicit run).
+TEST_F(ClothCli, PreviewRunsProjectiveDynamics) {
+  write("scene.json", kSmallSleeve);
+  const CliRun r = run("cloth " + path("scene.json") + " --preview -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("preview rounds"), std::string::npos) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  EXPECT_EQ(c["result"]["solver"], "preview");
+  EXPECT_EQ(c["result"]["newton_iterations"].get<int>(), 0);
+  EXPECT_EQ(c["result"]["quasi_newton_iterations"].get<int>(), 0);
+  // One a step; this fast bend (15 degrees a step) splits steps, as the implicit solver's.
+  EXPECT_EQ(c["result"]["factorizations"].get<int>(), c["result"]["steps"].get<int>());
+  EXPECT_GT(c["result"]["steps"].get<int>(), 3);
+  ASSERT_EQ(c["frames"].size(), 4u);
+  for (size_t f = 1; f < 4; ++f) {
+    EXPECT_GE(c["frames"][f]["preview_iterations"].get<int>(), 1);
+    EXPECT_TRUE(c["frames"][f]["seconds"].contains("rounds_s"));
+    EXPECT_GT(c["frames"][f]["min_arm_clearance_mm"].get<double>(), -0.8);
+  }
+  EXPECT_NE(c["result"]["penetration"].get<std::string>().find("not guaranteed"), std::string::npos);
+  for (const char* f : {"animation.glb", "frames/0003_garment.ply", "report.html", "last_frame.png"})
+    EXPECT_TRUE(fs::exists(path("out/") + f)) << f;
+  EXPECT_NE(run("cloth " + path("scene.json") + " --preview --preview-iterations 0 -o " + path("out2")).code, 0);
+}
+
 TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
   write("leg.json", R"({"builtin": "legging", "frames": 2, "frame_rate_hz": 20, "substeps": 2,
     "newton": {"max_iterations": 6},

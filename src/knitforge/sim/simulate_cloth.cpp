@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/core.h>
 
@@ -90,7 +91,15 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
   const int n = model.num_vertices(), ne = model.num_elements();
   KinematicBody body(body_mesh);
   if (!body_frames.empty()) body.move_to(body_frames[0]);
-  SimWorkspace ws(model);
+  const bool preview = o.solver == ClothSolver::Preview;
+  std::optional<SimWorkspace> ws;
+  std::optional<PreviewWorkspace> pws;
+  if (preview) {
+    pws.emplace(model);
+  } else {
+    ws.emplace(model);
+  }
+  const std::vector<char>& pinned = preview ? pws->pinned : ws->pinned_vertices();
 
   // Attachments from the start pose.
   std::vector<Attachment> att(model.pinned.size());
@@ -117,7 +126,7 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
   for (int v = 0; v < n; ++v) state.positions_mm.segment<3>(3 * v) = model.rest_positions[v];
   state.velocities_mm_s = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(n));
   {
-    const double d = min_distance_to_body(body, state.positions_mm, o.contact.distance_mm, ws.pinned_vertices());
+    const double d = min_distance_to_body(body, state.positions_mm, o.contact.distance_mm, pinned);
     if (!(d > 0)) {
       throw InvalidInput(
           "cloth: a free garment vertex touches the body at the start (distance 0); start the garment a little "
@@ -168,7 +177,7 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
   };
 
   ClothFrame first;
-  first.min_distance_mm = min_distance_to_body(body, state.positions_mm, o.distance_range_mm, ws.pinned_vertices());
+  first.min_distance_mm = min_distance_to_body(body, state.positions_mm, o.distance_range_mm, pinned);
   measure(first);
   result.min_distance_mm = first.min_distance_mm;
   if (on_frame) on_frame(first);
@@ -195,9 +204,26 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
           pins[k] = model.rest_positions[v];
         }
       }
+      const std::vector<Vec3> body_end = body_frames.empty() ? std::vector<Vec3>{} : pose;
       StepResult r;
       try {
-        r = step_simulation(ws, state, body, body_frames.empty() ? std::vector<Vec3>{} : pose, pins, so);
+        if (preview) {
+          PreviewStepResult p = preview_step(*pws, state, body, body_end, pins, so.time_step_s, o.gravity_mm_s2,
+                                             o.contact.distance_mm, o.contact.friction, o.preview);
+          r.state = std::move(p.state);
+          r.converged = p.converged;
+          r.factorizations = p.substeps;  // one a (split) step
+          r.substeps = p.substeps;
+          r.contacts = p.contacts;
+          r.min_distance_mm = p.min_distance_mm;
+          r.seconds.factor = p.factor_seconds;
+          r.seconds.evaluate = p.iterate_seconds;
+          r.seconds.max_step = p.contact_seconds;
+          fr.preview_iterations += p.iterations;
+          fr.preview_last_move_mm = std::max(fr.preview_last_move_mm, p.last_move_mm);
+        } else {
+          r = step_simulation(*ws, state, body, body_end, pins, so);
+        }
       } catch (const SolverError& e) {
         throw SolverError(fmt::format("cloth: frame {} (step {} of {}): {}", f, s, o.substeps, e.what()));
       }
@@ -216,12 +242,13 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
     }
     // The step reports distances within the contact distance only; farther, measure.
     if (!std::isfinite(fr.min_distance_mm))
-      fr.min_distance_mm = min_distance_to_body(body, state.positions_mm, o.distance_range_mm, ws.pinned_vertices());
+      fr.min_distance_mm = min_distance_to_body(body, state.positions_mm, o.distance_range_mm, pinned);
     measure(fr);
     result.converged = result.converged && fr.converged;
     result.newton_iterations += fr.newton_iterations;
     result.quasi_newton_iterations += fr.quasi_newton_iterations;
     result.factorizations += fr.factorizations;
+    result.preview_iterations += fr.preview_iterations;
     result.steps += fr.steps;
     result.min_distance_mm = std::min(result.min_distance_mm, fr.min_distance_mm);
     add(result.seconds, fr.seconds);

@@ -4,7 +4,8 @@
 /// seed ch. 4 §4.2-4.3, where the seed ran ARCSim with per-triangle
 /// materials and Coulomb friction): backward-Euler steps of
 /// step_simulation() while the body moves through its poses, with
-/// per-frame measures.
+/// per-frame measures; or the projective-dynamics preview
+/// (ClothOptions::solver).
 ///
 /// Frame f (1..frames) ends at t = f / frame_rate; it is `substeps` steps of
 /// h = 1 / (frame_rate substeps), the body moving linearly between its pose
@@ -34,6 +35,7 @@
 #include "knitforge/geometry/tri_mesh.h"
 #include "knitforge/sim/contact_energy.h"
 #include "knitforge/sim/newton_solve.h"
+#include "knitforge/sim/projective_dynamics.h"
 #include "knitforge/sim/psd_projection.h"
 #include "knitforge/sim/quasi_newton_solve.h"
 #include "knitforge/sim/sim_model.h"
@@ -44,7 +46,19 @@ namespace knitforge {
 /// 40 minutes at the rate measured on the 2-core machine (docs/sim.md).
 inline constexpr double kMaxClothWork = 5e6;
 
+/// How the steps are solved.
+///  - Implicit: backward Euler by step_simulation() (FEM energies, barrier
+///    contact with collision-free steps, converged to Newton's tolerance).
+///  - Preview: projective dynamics (projective_dynamics.h): a quadratic
+///    surrogate of the material and contact by projection, a fixed budget
+///    of iterations a step; fast, not the FEM answer, and the body's
+///    non-penetration is not guaranteed (measured and reported).
+enum class ClothSolver { Implicit, Preview };
+
 struct ClothOptions {
+  ClothSolver solver = ClothSolver::Implicit;
+  /// The preview's iterations and tolerance (solver Preview only).
+  PreviewOptions preview;
   int frames = 30;
   double frame_rate_hz = 30.0;
   int substeps = 2;
@@ -87,11 +101,17 @@ struct ClothFrame {
   int newton_iterations = 0;
   int quasi_newton_iterations = 0;  ///< L-BFGS steps before Newton (StepOptions::quasi_newton)
   int factorizations = 0;           ///< Cholesky factorisations, failed ones included
+  int preview_iterations = 0;       ///< local-global rounds (solver Preview)
+  double preview_last_move_mm = 0.0;  ///< solver Preview: the largest last-round move of the frame's steps
   bool converged = true;
   int solves_at_iteration_limit = 0;  ///< Newton solves of the frame that hit the iteration limit
   int steps = 0;  ///< backward-Euler steps (substeps, more when split)
   int contacts = 0;
   double max_force_mn = 0.0;  ///< largest residual force of the frame's last solve
+  /// Wall seconds. Preview: `factor` = assembly and factorisation,
+  /// `evaluate` = the local-global rounds (projections and
+  /// back-substitutions), `max_step` = the contact half-spaces and the final
+  /// projection; `line_search` unused.
   NewtonTimings seconds;
 };
 
@@ -99,10 +119,11 @@ struct ClothResult {
   std::vector<ClothFrame> frames;       ///< frames + 1 (frame 0 = the start)
   std::vector<double> max_stress_kpa;   ///< per element, over time
   std::vector<double> max_sliding_mm;   ///< per vertex, over time
-  bool converged = true;                ///< every Newton solve converged
+  bool converged = true;                ///< every Newton solve converged (Preview: every step's rounds reached the tolerance)
   int newton_iterations = 0;
   int quasi_newton_iterations = 0;
   int factorizations = 0;
+  int preview_iterations = 0;
   int steps = 0;
   double min_distance_mm = 0.0;         ///< over every frame
   NewtonTimings seconds;
