@@ -239,7 +239,7 @@ TEST(PreviewStep, CantileverRestsWhereTheImplicitSolverPutsIt) {
     po.max_iterations = 2000;
     po.tolerance_mm = 1e-9;
     SimState s = at_rest(eq.positions_mm);
-    for (int k = 0; k < 20; ++k) s = preview_step(ws, s, KinematicBody{}, {}, {}, 0.01, g, 0.5, 0.5, po).state;
+    for (int k = 0; k < 8; ++k) s = preview_step(ws, s, KinematicBody{}, {}, {}, 0.01, g, 0.5, 0.5, po).state;
     const double tip = strip.tip_height_mm(s.positions_mm);
     if (scale == 1.0) {
       EXPECT_NEAR(tip, want, 0.03 * std::abs(want));
