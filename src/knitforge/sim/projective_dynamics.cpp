@@ -345,6 +345,7 @@ std::optional<PreviewStepResult> try_preview_step(PreviewWorkspace& ws, const Si
           const Vec3 end_point = end_body.point(q.face, q.where.bary);
           a.motion = end_point - q.where.point;
           a.normal = face_frame(end_body, q.face) * (face_frame(body, q.face).transpose() * normal);
+          if (!a.normal.allFinite()) a.normal = normal;  // the face degenerates at the end pose: keep its start normal
           a.point = end_point;
           found[v].push_back(a);
         }
