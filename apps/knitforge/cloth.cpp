@@ -259,10 +259,11 @@ json preview_timings_json(const NewtonTimings& t) {
 
 constexpr const char* kPreviewPenetration =
     "preview (projective dynamics): contact is a projection onto the tangent planes of the body parts each vertex "
-    "was near at its step's start, so the body's non-penetration is not guaranteed; min_distance_mm is the smallest "
-    "unsigned distance of a free vertex to the body mesh over all frames as measured; for the built-in arm (leg), "
+    "was near at its step's start, and every move passes the implicit solver's collision-free check (a step is "
+    "split while the body would pass through the fabric), so no vertex reaches the body mesh; min_distance_mm is "
+    "the smallest unsigned distance of a free vertex to the body mesh over all frames; for the built-in arm (leg), "
     "min_arm_clearance_mm (min_leg_clearance_mm) is the smallest signed distance of a free vertex to the true "
-    "capsules (negative inside)";
+    "capsules (negative inside; the mesh is inscribed, so down to minus its chord sag)";
 
 }  // namespace
 
@@ -294,8 +295,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_flag("--preview", o->preview,
                "The fast preview instead of the implicit solver: projective dynamics on a quadratic surrogate of the "
-               "material, contact by projection (docs/sim.md, \"Preview\"); not the FEM answer, and the body's "
-               "non-penetration is measured, not guaranteed");
+               "material, contact by projection (docs/sim.md, \"The fast preview\"): 30-40 times faster, never "
+               "inside the body, but not the FEM answer (about 5 mm RMS from it on the built-in sleeve)");
   cmd->add_option("--preview-iterations", o->preview_iterations,
                   "With --preview: local-global rounds per time step at most")
       ->check(CLI::Range(1, 100000))
