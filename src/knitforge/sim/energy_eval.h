@@ -29,8 +29,6 @@ namespace knitforge {
 
 struct SimModel;
 
-/// The lower triangle of a symmetric 3n x 3n matrix made of 3x3 vertex
-/// blocks, in compressed column form (what CHOLMOD reads).
 /// Value, gradient and Hessian of one element of K vertices (3K unknowns).
 template <int K>
 struct ElementEnergy {
@@ -39,6 +37,8 @@ struct ElementEnergy {
   Eigen::Matrix<double, 3 * K, 3 * K> hessian = Eigen::Matrix<double, 3 * K, 3 * K>::Zero();
 };
 
+/// The lower triangle of a symmetric 3n x 3n matrix made of 3x3 vertex
+/// blocks, in compressed column form (what CHOLMOD reads).
 class HessianPattern {
  public:
   /// Pattern with the diagonal blocks of `num_vertices` vertices and the

@@ -10,6 +10,16 @@
 
 namespace knitforge {
 
+Mat3 face_frame(const TriMesh& mesh, const std::vector<Vec3>& positions, int face) {
+  const auto& t = mesh.faces[face];
+  const Vec3 e = positions[t[1]] - positions[t[0]];
+  Mat3 F;
+  F.col(0) = e.normalized();
+  F.col(2) = e.cross(positions[t[2]] - positions[t[0]]).normalized();
+  F.col(1) = F.col(2).cross(F.col(0));
+  return F;
+}
+
 std::vector<Aabb> face_boxes(const TriMesh& mesh, const std::vector<Vec3>* end) {
   std::vector<Aabb> boxes(mesh.faces.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) {

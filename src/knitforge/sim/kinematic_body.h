@@ -32,6 +32,13 @@ struct BodyPoint {
   double distance2 = 0.0;     ///< squared distance to the query (mm²)
 };
 
+/// The orthonormal frame of triangle `face` of `mesh` with its vertices at
+/// `positions` (the mesh's own, or a pose of it): columns the first edge's
+/// direction, normal x edge, and the unit normal (not finite when the
+/// triangle is degenerate). A rigid motion of the triangle moves its frame
+/// with it.
+Mat3 face_frame(const TriMesh& mesh, const std::vector<Vec3>& positions, int face);
+
 class KinematicBody {
  public:
   KinematicBody() = default;

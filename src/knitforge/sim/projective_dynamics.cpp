@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <cstdint>
-#include <unordered_map>
 
 #include <fmt/core.h>
 
@@ -51,11 +49,6 @@ HingeSide hinge_side(const MembraneElement& el, int e0, int e1, int third) {
   return s;
 }
 
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
-
 // A vertex's half-space against one body part for the step: the tangent
 // plane at its closest point at the start, carried to the end pose.
 struct Anchor {
@@ -65,17 +58,6 @@ struct Anchor {
   Vec3 motion = Vec3::Zero();  // the body point's motion over the step (mm)
   bool active = false;         // in the system matrix this step
 };
-
-Mat3 face_frame(const KinematicBody& body, int face) {
-  const auto& t = body.mesh().faces[face];
-  const auto& p = body.mesh().vertices;
-  const Vec3 e = p[t[1]] - p[t[0]];
-  Mat3 F;
-  F.col(0) = e.normalized();
-  F.col(2) = e.cross(p[t[2]] - p[t[0]]).normalized();
-  F.col(1) = F.col(2).cross(F.col(0));
-  return F;
-}
 
 // The target of an anchor's term at x: out along the normal by the depth,
 // the tangential motion relative to the body taken back up to μ x depth.
@@ -128,30 +110,16 @@ void check_step_inputs(const PreviewWorkspace& ws, const SimState& state, const 
 std::vector<PreviewRow> build_preview_rows(const SimModel& model) {
   const int ne = model.num_elements();
   std::vector<PreviewRow> rows(2 * static_cast<size_t>(ne) + model.hinges.size());
-  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_elements;
-  edge_elements.reserve(3 * static_cast<size_t>(ne));
   for (int e = 0; e < ne; ++e) {
     const MembraneElement& el = model.elements[e];
     const Mat2& R = el.rest_inverse;
     rows[2 * e] = {{el.v[0], el.v[1], el.v[2], -1}, {-(R(0, 0) + R(1, 0)), R(0, 0), R(1, 0), 0.0}};
     rows[2 * e + 1] = {{el.v[0], el.v[1], el.v[2], -1}, {-(R(0, 1) + R(1, 1)), R(0, 1), R(1, 1), 0.0}};
-    for (int k = 0; k < 3; ++k) {
-      auto [it, fresh] = edge_elements.try_emplace(edge_key(el.v[k], el.v[(k + 1) % 3]), std::array<int, 2>{e, -1});
-      if (!fresh && it->second[1] < 0) it->second[1] = e;
-    }
   }
   for (size_t k = 0; k < model.hinges.size(); ++k) {
     const BendingHinge& hg = model.hinges[k];
-    const auto it = edge_elements.find(edge_key(hg.v[0], hg.v[1]));
-    int with2 = -1, with3 = -1;
-    if (it != edge_elements.end()) {
-      for (int e : it->second) {
-        if (e < 0) continue;
-        if (corner_of(model.elements[e], hg.v[2]) >= 0) with2 = e;
-        if (corner_of(model.elements[e], hg.v[3]) >= 0) with3 = e;
-      }
-    }
-    if (with2 < 0 || with3 < 0) {
+    const auto [with2, with3] = hg.elements;
+    if (with2 < 0 || with3 < 0 || with2 >= ne || with3 >= ne) {
       throw InvalidInput(fmt::format("preview: hinge {} (edge {}-{}) does not join two elements of the model", k,
                                      hg.v[0], hg.v[1]));
     }
@@ -344,7 +312,8 @@ std::optional<PreviewStepResult> try_preview_step(PreviewWorkspace& ws, const Si
           a.vertex = v;
           const Vec3 end_point = end_body.point(q.face, q.where.bary);
           a.motion = end_point - q.where.point;
-          a.normal = face_frame(end_body, q.face) * (face_frame(body, q.face).transpose() * normal);
+          a.normal = face_frame(end_body.mesh(), end_body.mesh().vertices, q.face) *
+                     (face_frame(body.mesh(), body.mesh().vertices, q.face).transpose() * normal);
           if (!a.normal.allFinite()) a.normal = normal;  // the face degenerates at the end pose: keep its start normal
           a.point = end_point;
           found[v].push_back(a);

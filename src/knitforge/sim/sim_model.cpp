@@ -103,6 +103,7 @@ void finish_model(SimModel& model, const std::vector<RestTriangle>& rest) {
     const MembraneElement& e1 = model.elements[f1];
     BendingHinge h;
     h.v = {a, b, e0.v[(k0 + 2) % 3], e1.v[(k1 + 2) % 3]};
+    h.elements = {f0, f1};
     const double len0 = (rest[f0].p[(k0 + 1) % 3] - rest[f0].p[k0]).norm();
     const double len1 = (rest[f1].p[(k1 + 1) % 3] - rest[f1].p[k1]).norm();
     const double d0 = edge_rigidity(rest[f0], k0, (k0 + 1) % 3, model.materials[e0.material]);

@@ -50,6 +50,9 @@ struct MembraneElement {
 struct BendingHinge {
   std::array<int, 4> v{};
   double stiffness = 0.0;  ///< k (µJ): ½ D_e |e|² / (A_0 + A_1) of the rest hinge
+  /// The two elements it joins: [0] the one holding v[2], [1] the one
+  /// holding v[3] (-1 when not known).
+  std::array<int, 2> elements{-1, -1};
 };
 
 /// The hinge on the diagonal inside a split Knit stitch is this many times

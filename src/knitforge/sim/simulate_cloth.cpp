@@ -28,19 +28,6 @@ struct Attachment {
   Vec3 local = Vec3::Zero();
 };
 
-// The face's frame at vertex positions `pos`: columns first edge, normal x
-// edge, normal (orthonormal); its origin the point with `bary`.
-Mat3 face_frame(const TriMesh& mesh, const std::vector<Vec3>& pos, int face) {
-  const auto& t = mesh.faces[face];
-  const Vec3 e = pos[t[1]] - pos[t[0]];
-  const Vec3 n = e.cross(pos[t[2]] - pos[t[0]]);
-  Mat3 F;
-  F.col(0) = e.normalized();
-  F.col(2) = n.normalized();
-  F.col(1) = F.col(2).cross(F.col(0));
-  return F;
-}
-
 Vec3 face_point(const TriMesh& mesh, const std::vector<Vec3>& pos, int face, const Vec3& b) {
   const auto& t = mesh.faces[face];
   return b[0] * pos[t[0]] + b[1] * pos[t[1]] + b[2] * pos[t[2]];
