@@ -65,6 +65,39 @@ TEST(LaplacianEigenvectors, EigenpairsAreSortedAndMassOrthonormal) {
   EXPECT_GT(e.values[0], 0.0);
 }
 
+// f = cos(pi z / h) on a tube: flat at both rims, steepest half-way.
+TEST(FlatWeightedDirections, AreUnitWhereTheFieldIsSteepAndFadeWhereItIsFlat) {
+  const double h = 100.0;
+  const TriMesh m = open_tube(40.0, h, 5.0);
+  std::vector<double> f(m.vertices.size());
+  for (size_t v = 0; v < f.size(); ++v) f[v] = std::cos(std::numbers::pi * m.vertices[v].z() / h);
+  const std::vector<Vec3> g = flat_weighted_directions(m, f, false);
+  const std::vector<Vec3> t = flat_weighted_directions(m, f, true);
+  ASSERT_EQ(g.size(), m.faces.size());
+  // The RMS of |sin| is 1/sqrt(2) of its peak: faces near mid-height are
+  // unit, faces of the first row beside a rim weigh about sqrt(2) sin(pi
+  // z / h) with z their centroid's height.
+  double near_rim = 1.0, mid = 0.0;
+  for (size_t i = 0; i < m.faces.size(); ++i) {
+    const auto& fc = m.faces[i];
+    const double z = (m.vertices[fc[0]].z() + m.vertices[fc[1]].z() + m.vertices[fc[2]].z()) / 3.0;
+    EXPECT_LE(g[i].norm(), 1.0 + 1e-12);
+    EXPECT_NEAR(t[i].norm(), g[i].norm(), 1e-12);
+    EXPECT_NEAR(t[i].dot(g[i]), 0.0, 1e-9);  // the isocurve's tangent is across the gradient
+    if (g[i].norm() > 0.0) {
+      EXPECT_GT(std::abs(g[i].z()) / g[i].norm(), 0.99);  // along the axis
+    }
+    if (std::abs(z - 0.5 * h) < 10.0) mid = std::max(mid, 1.0 - g[i].norm());
+    if (z < 3.0 || z > h - 3.0) near_rim = std::min(near_rim, 1.0 - g[i].norm());
+  }
+  EXPECT_LT(mid, 1e-12);       // unit
+  EXPECT_GT(near_rim, 0.75);   // at most a quarter
+  // A constant field has no direction anywhere (its gradients are round-off).
+  for (const Vec3& d : flat_weighted_directions(m, std::vector<double>(f.size(), 2.0), true))
+    EXPECT_EQ(d.squaredNorm(), 0.0);
+  EXPECT_THROW(flat_weighted_directions(m, std::vector<double>(3, 0.0), false), InvalidInput);
+}
+
 TEST(LaplacianEigenvectors, RefusesWhatHasNoFiedlerVector) {
   EigenvectorOptions o;
   o.count = 0;

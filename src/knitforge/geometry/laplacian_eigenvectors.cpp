@@ -74,6 +74,34 @@ SparseMatrix directional_stiffness(const TriMesh& mesh, const std::vector<Vec3>&
   return B;
 }
 
+std::vector<Vec3> flat_weighted_directions(const TriMesh& mesh, const std::vector<double>& field,
+                                           bool isocurve_tangent) {
+  const std::vector<Vec3> g = field_face_gradients(mesh, field);
+  std::vector<Vec3> d = isocurve_tangent ? wale_directions(mesh, field) : g;
+  const std::vector<double> areas = face_areas(mesh);
+  double sum = 0.0, area = 0.0;
+  for (size_t f = 0; f < g.size(); ++f) {
+    sum += areas[f] * g[f].squaredNorm();
+    area += areas[f];
+  }
+  const double rms = area > 0.0 ? std::sqrt(sum / area) : 0.0;
+  // A field whose gradients are round-off of its values is constant.
+  double peak = 0.0;
+  for (double x : field) peak = std::max(peak, std::abs(x));
+  const BoundingBox box = bounding_box(mesh);
+  const bool constant = !(rms * (box.max - box.min).norm() > 1e-12 * peak);
+  for (size_t f = 0; f < d.size(); ++f) {
+    const double len = g[f].norm();
+    if (constant || !(len > 0.0)) {
+      d[f] = Vec3::Zero();
+      continue;
+    }
+    if (!isocurve_tangent) d[f] /= len;
+    d[f] *= std::min(1.0, len / rms);
+  }
+  return d;
+}
+
 LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMatrix& L,
                                              const EigenvectorOptions& o) {
   if (o.count < 1)

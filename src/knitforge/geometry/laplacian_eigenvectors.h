@@ -60,7 +60,8 @@ LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMa
                                              const EigenvectorOptions& options = {});
 
 /// The stiffness of the energy sum_f A_f <grad x, d_f>^2 + epsilon x^T L x:
-/// change along the unit direction d_f of each face (a zero d_f: none)
+/// change along the direction d_f of each face (unit, or shorter to weigh
+/// the face less, e.g. flat_weighted_directions(); a zero d_f: none)
 /// plus epsilon of the cotangent Laplacian (which keeps the lowest modes
 /// smooth across the directions). Its lowest eigenvectors change least
 /// along d: with d the normalised gradient of the Fiedler vector, the field
@@ -68,6 +69,17 @@ LaplacianEigenvectors stiffness_eigenvectors(const TriMesh& mesh, const SparseMa
 /// \throw InvalidInput when directions.size() != faces, epsilon < 0, or a
 ///        face index is out of range.
 SparseMatrix directional_stiffness(const TriMesh& mesh, const std::vector<Vec3>& directions, double epsilon);
+
+/// Directions of a field for directional_stiffness(): per face its unit
+/// gradient (isocurve_tangent false) or the unit tangent of its isocurve
+/// (n x grad / |grad|, true), scaled by min(1, |grad| / the area-weighted
+/// RMS of |grad| over the mesh). Where a field is flat (beside a free rim,
+/// round an extremum) its direction is round-off, and these faces then
+/// weigh little against the smoothing term, so round-off cannot steer
+/// the result. All zero for a constant field.
+/// \throw InvalidInput when field has not one value per vertex.
+std::vector<Vec3> flat_weighted_directions(const TriMesh& mesh, const std::vector<double>& field,
+                                           bool isocurve_tangent);
 
 /// Area-weighted mean, over the faces where both gradients are non-zero, of
 /// |cos| of the angle between grad a and grad b (0: orthogonal everywhere,

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include <Eigen/Dense>
 
 #include "knitforge/design/tube/design_tube.h"
+#include "knitforge/design/tube/tube_field.h"
 #include "knitforge/design/tube/tube_field_candidates.h"
 #include "knitforge/geometry/laplacian_eigenvectors.h"
 #include "knitforge/geometry/shapes.h"
@@ -126,6 +128,81 @@ TEST(TubeFieldCandidates, AutoPicksTheLowestKnittableEstimate) {
     }
     EXPECT_NEAR(d.divergence.transfer_estimate(o.params.stitch_width), chosen.estimate, 1e-9);
   }
+}
+
+// An eigenvector has free rims, so it is flat there: cos(pi z / h) on a
+// straight tube. The levels beside a rim must not be decided by noise:
+// two candidates differing by noise of 3e-4 of their range (far above an
+// eigen-solver's) give nearly the same field, a round at every level,
+// with the rings of z as its isocurves.
+TEST(TubeFieldCandidates, ACandidateFlatAtItsRimsIsLevelledIndependentlyOfRoundOff) {
+  const double h = 100.0;
+  const TriMesh m = open_tube(40.0, h, 2.5);  // the built-in tube at the route's edge
+  const TubeField harmonic = tube_field(m, "tube");
+  auto candidate = [&](std::uint64_t state) {
+    std::vector<double> f(m.vertices.size());
+    for (size_t v = 0; v < f.size(); ++v) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      const double noise = static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;  // [-0.5, 0.5)
+      f[v] = std::cos(std::numbers::pi * m.vertices[v].z() / h) + 3e-4 * noise;;
+    }
+    return f;
+  };
+  const TubeField a = levelled_field(m, candidate(1), harmonic);
+  const TubeField b = levelled_field(m, candidate(2), harmonic);
+  EXPECT_EQ(a.start_loop, harmonic.start_loop);
+  EXPECT_EQ(a.interior_extrema, 0);
+  EXPECT_EQ(b.interior_extrema, 0);
+  double apart = 0.0, off = 0.0;
+  for (size_t v = 0; v < a.value.size(); ++v) {
+    apart = std::max(apart, std::abs(a.value[v] - b.value[v]));
+    off = std::max(off, std::abs(a.value[v] - harmonic.value[v]));
+  }
+  EXPECT_LT(apart, 3e-3);
+  EXPECT_LT(off, 3e-3);  // with unweighted tangents: 0.013, the rim's flat band steered by the noise
+  for (const TubeField* u : {&a, &b}) EXPECT_NO_THROW(round_levels(m, *u, 2.8));
+  // What is not a candidate for rounds is refused, naming why.
+  std::vector<double> round(m.vertices.size()), tilted(m.vertices.size());
+  for (size_t v = 0; v < round.size(); ++v) {
+    round[v] = m.vertices[v].x();                               // runs round the tube
+    tilted[v] = m.vertices[v].z() + 0.2 * m.vertices[v].x();  // its rims are not its levels
+  }
+  EXPECT_THROW(
+      {
+        try {
+          levelled_field(m, round, harmonic);
+        } catch (const InvalidInput& e) {
+          EXPECT_NE(std::string(e.what()).find("same level"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      InvalidInput);
+  EXPECT_THROW(
+      {
+        try {
+          levelled_field(m, tilted, harmonic);
+        } catch (const InvalidInput& e) {
+          EXPECT_NE(std::string(e.what()).find("not levels of it"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      InvalidInput);
+  EXPECT_THROW(levelled_field(m, std::vector<double>(5, 0.0), harmonic), InvalidInput);
+}
+
+// The built-in tube (h 100 < pi r 126) is short and wide: its Fiedler
+// vector runs round it, the orthogonal field along it, with rings for
+// levels as the harmonic field's: next to no shaping.
+TEST(TubeFieldCandidates, TheBuiltInTubesOrthogonalFieldRunsAlongIt) {
+  TubeDesignOptions o;
+  o.params = {3.5, 2.8};
+  const TubeDesign d = design_tube(make_shape("tube", 2.5), o);
+  ASSERT_EQ(d.candidates.size(), 3u);
+  EXPECT_FALSE(d.candidates[1].knittable);
+  EXPECT_NE(d.candidates[1].why_not.find("same level"), std::string::npos) << d.candidates[1].why_not;
+  ASSERT_TRUE(d.candidates[2].knittable) << d.candidates[2].why_not;
+  EXPECT_LT(d.candidates[2].estimate, 5.0);
+  EXPECT_EQ(d.field_kind, TubeFieldKind::Harmonic);
 }
 
 }  // namespace

@@ -35,36 +35,6 @@ int crown_vertex_of(const TriMesh& disk, const std::vector<double>& f) {
   return top;
 }
 
-// An open tube's candidate as a field with level rims (tube_field_candidates.h):
-// 0 on harmonic's start loop, 1 on its end loop.
-TubeField levelled_field(const TriMesh& mesh, const std::vector<double>& f, const TubeField& harmonic) {
-  auto mean = [&](const std::vector<int>& loop) {
-    double m = 0.0;
-    for (int v : loop) m += f[static_cast<size_t>(v)];
-    return m / static_cast<double>(loop.size());
-  };
-  const double a = mean(harmonic.start_loop), b = mean(harmonic.end_loop);
-  const auto [lo, hi] = std::minmax_element(f.begin(), f.end());
-  const double range = *hi - *lo;
-  if (!(std::abs(b - a) > kRimSpread * range))
-    throw InvalidInput("its two rims lie on the same level (it runs round the tube, not along it)");
-  double spread = 0.0;
-  for (const auto* loop : {&harmonic.start_loop, &harmonic.end_loop})
-    for (int v : *loop)
-      spread = std::max(spread, std::abs(f[static_cast<size_t>(v)] - (loop == &harmonic.start_loop ? a : b)));
-  if (spread > kRimSpread * range)
-    throw InvalidInput(
-        fmt::format("its rims are not levels of it (a rim vertex lies {:.1f} % of its range off its rim's "
-                    "mean, more than {:.0f} %)",
-                    100.0 * spread / range, 100.0 * kRimSpread));
-  TubeField out = harmonic;
-  for (size_t v = 0; v < f.size(); ++v) out.value[v] = std::clamp((f[v] - a) / (b - a), 0.0, 1.0);
-  for (int v : harmonic.start_loop) out.value[static_cast<size_t>(v)] = 0.0;
-  for (int v : harmonic.end_loop) out.value[static_cast<size_t>(v)] = 1.0;
-  out.interior_extrema = count_interior_extrema(mesh, out.value);
-  return out;
-}
-
 // The start-rim point under `crown_end`: the round starts chained from the
 // crown ring down to the rim (tube_round_curves() on the reversed field).
 Vec3 rim_point_below(const TriMesh& annulus, const TubeField& field, const Vec3& crown_end) {

@@ -52,8 +52,15 @@ TubeField tube_field(const TriMesh& mesh, const std::string& what) {
   f.start_length = start == 0 ? l0 : l1;
   f.end_length = start == 0 ? l1 : l0;
 
-  // Dirichlet u = 0 / 1 on the rims; the rest solved from L_FF u_F = -L_FB u_B.
+  return field_with_level_rims(mesh, cotan_laplacian(mesh), std::move(f));
+}
+
+TubeField field_with_level_rims(const TriMesh& mesh, const SparseMatrix& K, TubeField rims) {
+  // Dirichlet u = 0 / 1 on the rims; the rest solved from K_FF u_F = -K_FB u_B.
   const int n = mesh.num_vertices();
+  if (K.rows() != n || K.cols() != n)
+    throw InvalidInput(fmt::format("tube field: a stiffness of {} x {} for {} vertices", K.rows(), K.cols(), n));
+  TubeField f = std::move(rims);
   std::vector<double> fixed(static_cast<size_t>(n), -1.0);
   for (int v : f.start_loop) fixed[static_cast<size_t>(v)] = 0.0;
   for (int v : f.end_loop) fixed[static_cast<size_t>(v)] = 1.0;
@@ -65,11 +72,10 @@ TubeField tube_field(const TriMesh& mesh, const std::string& what) {
   for (int v = 0; v < n; ++v)
     if (fixed[static_cast<size_t>(v)] >= 0) f.value[static_cast<size_t>(v)] = fixed[static_cast<size_t>(v)];
   if (free == 0) return f;
-  const SparseMatrix L = cotan_laplacian(mesh);
   std::vector<Eigen::Triplet<double>> trip;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(free);
-  for (int col = 0; col < L.outerSize(); ++col) {
-    for (SparseMatrix::InnerIterator it(L, col); it; ++it) {
+  for (int col = 0; col < K.outerSize(); ++col) {
+    for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
       const int r = static_cast<int>(it.row()), c = static_cast<int>(it.col());
       const int ir = index[static_cast<size_t>(r)];
       if (ir < 0) continue;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "knitforge/geometry/sparse_solver.h"
 #include "knitforge/geometry/tri_mesh.h"
 
 namespace knitforge {
@@ -42,6 +43,15 @@ struct TubeField {
 ///        one piece with exactly two boundary loops and genus 0, naming
 ///        what was found and what to do; SolverError when the solve fails.
 TubeField tube_field(const TriMesh& mesh, const std::string& what);
+
+/// The field with `rims`' start loop at 0 and end loop at 1 that minimises
+/// u^T K u over the other vertices, for a stiffness K (n x n, symmetric,
+/// positive definite once the rims are fixed: the cotangent Laplacian gives
+/// tube_field()'s field, directional_stiffness() one that follows given
+/// isocurves, design_tube.cpp). Values clamped to [0, 1]; `rims`' loops and
+/// lengths are kept, its values replaced, interior_extrema counted.
+/// \throw InvalidInput when K is not n x n; SolverError when the solve fails.
+TubeField field_with_level_rims(const TriMesh& mesh, const SparseMatrix& K, TubeField rims);
 
 /// Levels of the rounds.
 struct RoundLevels {
