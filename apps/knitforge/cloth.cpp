@@ -112,7 +112,7 @@ void load_stitch_garment(const ClothScene& s, LoadedScene& L) {
 
 // A glTF body: sampled at the frame times from the animation's first key
 // (scene.frames set to the animation's length when the scene has none).
-void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
+void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work, int preview_rounds) {
   GltfReadOptions go;
   go.mesh_name = s.body_mesh_name;
   go.animation = s.body_animation_name;
@@ -135,7 +135,7 @@ void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
         s.where, s.body_animation, anim.animation_name, length, anim.start_s, anim.end_s, s.frames, s.frame_rate_hz,
         run, fit));
   }
-  check_cloth_work(L.garment.num_vertices(), s.frames, s.substeps, max_work);  // before the frames are made
+  check_cloth_work(L.garment.num_vertices(), s.frames, s.substeps, max_work, preview_rounds);  // before the frames are made
   const double scale = unit_scale(s.body_units);
   L.body.faces = anim.faces;
   for (int f = 0; f <= s.frames; ++f) {
@@ -146,7 +146,7 @@ void load_gltf_body(ClothScene& s, LoadedScene& L, double max_work) {
   }
 }
 
-LoadedScene load_scene(ClothScene& s, double max_work) {
+LoadedScene load_scene(ClothScene& s, double max_work, int preview_rounds) {
   LoadedScene L;
   if (s.builtin == "sleeve" || s.builtin == "legging") {
     const bool arm = s.builtin == "sleeve";
@@ -194,7 +194,7 @@ LoadedScene load_scene(ClothScene& s, double max_work) {
   if (!s.body_mesh.empty()) {
     L.body = load_surface(s.body_mesh, s.body_units);
   } else if (!s.body_animation.empty()) {
-    load_gltf_body(s, L, max_work);
+    load_gltf_body(s, L, max_work, preview_rounds);
   } else {
     for (size_t k = 0; k < s.body_frames.size(); ++k) {
       TriMesh m = load_surface(s.body_frames[k], s.body_units);
@@ -278,9 +278,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
     std::string scene, builtin, outdir;
     int frames = 0, substeps = 0;
     int quasi_newton = ClothOptions{}.quasi_newton.max_iterations;
-    int preview_iterations = ClothOptions{}.preview.max_iterations;
-    double max_work = kMaxClothWork;
-    bool json = false, preview = false;
+    int preview_iterations = 0;  // 0: the scene's
+    double max_work = 0;         // 0: the solver's default limit
+    bool json = false, preview_flag = false, implicit_flag = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md \"Cloth scene\")");
@@ -293,18 +293,24 @@ void add_cloth_command(CLI::App& app, Action& action) {
                   "\"Solver\")")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  cmd->add_flag("--preview", o->preview,
+  auto* preview_opt = cmd->add_flag("--preview", o->preview_flag,
                "The fast preview instead of the implicit solver: projective dynamics on a quadratic surrogate of the "
                "material, contact by projection (docs/sim.md, \"The fast preview\"): 30-40 times faster, never "
-               "inside the body, but not the FEM answer (about 5 mm RMS from it on the built-in sleeve)");
+               "inside the body, but not the FEM answer (about 5 mm RMS from it on the built-in sleeve); a scene asks "
+               "for it with \"solver\": \"preview\"");
+  cmd->add_flag("--implicit", o->implicit_flag,
+                "The implicit solver even where the scene asks for the preview")
+      ->excludes(preview_opt);
   cmd->add_option("--preview-iterations", o->preview_iterations,
-                  "With --preview: local-global rounds per time step at most")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+                  "The preview's local-global rounds per time step at most (default: the scene's \"preview\": "
+                  "{\"max_iterations\"}, 30)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--max-work", o->max_work,
-                  "Refuse runs of more garment vertices x frames x substeps than this")
-      ->check(positive_number())
-      ->capture_default_str();
+                  fmt::format("Refuse runs of more garment vertices x frames x substeps than this (x rounds / 30 for "
+                              "the preview; default {:g}, about 40 minutes of the implicit solver, or {:g} for the "
+                              "preview, about 15 minutes)",
+                              kMaxClothWork, kMaxPreviewWork))
+      ->check(positive_number());
   cmd->add_flag("--json", o->json, "Also print the summary (report.json) on stdout");
   cmd->callback([=, &action] {
     action = [=]() -> int {
@@ -326,8 +332,17 @@ void add_cloth_command(CLI::App& app, Action& action) {
         scene.frames_given = true;
       }
       if (o->substeps > 0) scene.substeps = o->substeps;
-      const LoadedScene L = load_scene(scene, o->max_work);  // a glTF body may set scene.frames
-      check_cloth_work(L.garment.num_vertices(), scene.frames, scene.substeps, o->max_work);
+      if (o->preview_flag) scene.preview = true;
+      if (o->implicit_flag) scene.preview = false;
+      if (o->preview_iterations > 0) {
+        if (!scene.preview) throw UsageError("cloth: --preview-iterations applies to the preview only (--preview)");
+        scene.preview_iterations = o->preview_iterations;
+      }
+      const bool preview = scene.preview;
+      const int rounds = preview ? scene.preview_iterations : 0;
+      const double max_work = o->max_work > 0 ? o->max_work : preview ? kMaxPreviewWork : kMaxClothWork;
+      const LoadedScene L = load_scene(scene, max_work, rounds);  // a glTF body may set scene.frames
+      check_cloth_work(L.garment.num_vertices(), scene.frames, scene.substeps, max_work, rounds);
 
       SimModelOptions mo;
       mo.materials = scene.materials;
@@ -348,9 +363,9 @@ void add_cloth_command(CLI::App& app, Action& action) {
       co.newton.max_iterations = scene.max_newton_iterations;
       co.newton.force_tolerance_mn = scene.force_tolerance_mn;
       co.quasi_newton.max_iterations = o->quasi_newton;
-      co.solver = o->preview ? ClothSolver::Preview : ClothSolver::Implicit;
-      co.preview.max_iterations = o->preview_iterations;
-      const char* solver_name = o->preview ? "preview" : "implicit";
+      co.solver = preview ? ClothSolver::Preview : ClothSolver::Implicit;
+      co.preview.max_iterations = scene.preview_iterations;
+      const char* solver_name = preview ? "preview" : "implicit";
       note(fmt::format("cloth: {} ({} vertices, {} triangles; body {} vertices), {} frames at {} Hz x {} substeps, {} "
                        "solver ...",
                        scene.where, model.num_vertices(), model.num_elements(), L.body.num_vertices(), co.frames,
@@ -359,8 +374,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
       const ClothResult r = simulate_cloth(model, L.body, L.body_frames, L.attached, co, [&](const ClothFrame& f) {
         if (f.frame > 0 && (f.frame % 10 == 0 || f.frame == co.frames)) {
           note(fmt::format("[{:3d} %] frame {}/{}: {} {}, closest {:.3g} mm, {:.1f} s", 100 * f.frame / co.frames,
-                           f.frame, co.frames, o->preview ? f.preview_iterations : f.newton_iterations,
-                           o->preview ? "preview rounds" : "Newton iterations", f.min_distance_mm,
+                           f.frame, co.frames, preview ? f.preview_iterations : f.newton_iterations,
+                           preview ? "preview rounds" : "Newton iterations", f.min_distance_mm,
                            sim_timer.seconds()));
         }
       });
@@ -429,8 +444,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
                      {"total", f.elastic_energy_uj + f.kinetic_energy_uj + f.gravity_energy_uj}}},
                    {"max_stress_kpa", smax},
                    {"max_sliding_mm", lmax},
-                   {"seconds", o->preview ? preview_timings_json(f.seconds) : newton_timings_json(f.seconds)}};
-        if (o->preview) {
+                   {"seconds", preview ? preview_timings_json(f.seconds) : newton_timings_json(f.seconds)}};
+        if (preview) {
           fj["preview_iterations"] = f.preview_iterations;
           fj["preview_last_move_mm"] = f.preview_last_move_mm;
         }
@@ -505,7 +520,7 @@ void add_cloth_command(CLI::App& app, Action& action) {
                            {L.clearance_key.empty() ? "min_arm_clearance_mm" : L.clearance_key,
                             finite_or_null(min_clearance)},
                            {"preview_iterations", r.preview_iterations},
-                           {"penetration", o->preview ? kPreviewPenetration :
+                           {"penetration", preview ? kPreviewPenetration :
                             "min_distance_mm is the smallest unsigned distance of a free vertex to the body mesh over "
                             "all frames (> 0 by the barrier and collision-free steps, which keep every vertex on the "
                             "side of the body it starts on); for the built-in arm (leg), min_arm_clearance_mm "
@@ -520,8 +535,8 @@ void add_cloth_command(CLI::App& app, Action& action) {
                             "per vertex: distance on the body between its contact point and the point where it first "
                             "touched (mm; touching = within sliding_distance_mm)"}};
       summary["seconds"] = {{"simulation", sim_seconds},
-                            {o->preview ? "preview" : "newton",
-                             o->preview ? preview_timings_json(r.seconds) : newton_timings_json(r.seconds)},
+                            {preview ? "preview" : "newton",
+                             preview ? preview_timings_json(r.seconds) : newton_timings_json(r.seconds)},
                             {"measures", r.measure_seconds}};
       summary["outputs"] = {{"animation", "animation.glb (garment and body, morph targets, LINEAR)"},
                             {"sequence", "frames/NNNN_garment.obj, frames/NNNN_body.obj"},
@@ -555,12 +570,12 @@ void add_cloth_command(CLI::App& app, Action& action) {
       note(fmt::format("{} frames, {} steps, {}, {} factorisations{}; closest "
                        "distance to the body {:.3g} mm; largest stress {:.3g} kPa, sliding {:.3g} mm; {:.2f} s -> {}",
                        co.frames, r.steps,
-                       o->preview ? fmt::format("{} preview rounds (projective dynamics)", r.preview_iterations)
+                       preview ? fmt::format("{} preview rounds (projective dynamics)", r.preview_iterations)
                                   : fmt::format("{} Newton iterations, {} L-BFGS", r.newton_iterations,
                                                 r.quasi_newton_iterations),
                        r.factorizations,
                        !unconverged ? ""
-                       : o->preview ? fmt::format(" ({} frames with a step whose rounds did not reach the tolerance)",
+                       : preview ? fmt::format(" ({} frames with a step whose rounds did not reach the tolerance)",
                                                   unconverged)
                                     : fmt::format(" ({} frames with an unconverged solve, {} at the iteration limit)",
                                                   unconverged, at_limit),

@@ -235,6 +235,41 @@ TEST_F(ClothCli, PreviewRunsProjectiveDynamics) {
   EXPECT_NE(run("cloth " + path("scene.json") + " --preview --preview-iterations 0 -o " + path("out2")).code, 0);
 }
 
+// The scene asks for the preview; --preview-iterations and --max-work apply
+// to it, --implicit overrides it.
+TEST_F(ClothCli, ASceneAsksForThePreview) {
+  json scene = json::parse(kSmallSleeve);
+  scene["solver"] = "preview";
+  scene["preview"] = {{"max_iterations", 7}};
+  write("scene.json", scene.dump());
+  CliRun r = run("cloth " + path("scene.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  json c = json::parse(slurp(path("out/cloth.json")));
+  EXPECT_EQ(c["result"]["solver"], "preview");
+  EXPECT_EQ(c["scene"]["preview"]["max_iterations"], 7);
+  for (size_t f = 1; f < c["frames"].size(); ++f)  // the frame's rounds, over its (split) steps
+    EXPECT_LE(c["frames"][f]["preview_iterations"].get<int>(), 7 * c["frames"][f]["steps"].get<int>());
+  EXPECT_GT(c["result"]["preview_iterations"].get<int>(), 7);
+  r = run("cloth " + path("scene.json") + " --preview-iterations 3 -o " + path("out3"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const int rounds7 = c["result"]["preview_iterations"].get<int>();
+  c = json::parse(slurp(path("out3/cloth.json")));
+  EXPECT_EQ(c["scene"]["preview"]["max_iterations"], 3);
+  EXPECT_LE(c["result"]["preview_iterations"].get<int>(), 3 * c["result"]["steps"].get<int>());
+  EXPECT_LT(c["result"]["preview_iterations"].get<int>(), rounds7);
+  // The preview's own limit, its rounds counted: refused, nothing written.
+  r = run("cloth " + path("scene.json") + " --preview-iterations 3000 --max-work 1e5 -o " + path("out4"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("the preview (garment vertices x frames x substeps x rounds / 30)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(path("out4")));
+  // --implicit: the implicit solver; then --preview-iterations does not apply.
+  r = run("cloth " + path("scene.json") + " --implicit --preview-iterations 3 -o " + path("out5"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--preview-iterations applies to the preview only"), std::string::npos) << r.err;
+  EXPECT_NE(run("cloth " + path("scene.json") + " --implicit --preview -o " + path("out6")).code, 0);
+}
+
 TEST_F(ClothCli, SmallLeggingBendsTheKnee) {
   write("leg.json", R"({"builtin": "legging", "frames": 2, "frame_rate_hz": 20, "substeps": 2,
     "newton": {"max_iterations": 6},

@@ -102,6 +102,26 @@ TEST(ClothScene, BuiltinNeedsNoFile) {
   EXPECT_EQ(t.frames, 4);
 }
 
+TEST(ClothScene, ASceneMayAskForThePreview) {
+  EXPECT_FALSE(builtin_cloth_scene("sleeve").preview);
+  const ClothScene s = cloth_scene_from_json(
+      json::parse(R"({"builtin": "sleeve", "solver": "preview", "preview": {"max_iterations": 12}})"), "scene.json");
+  EXPECT_TRUE(s.preview);
+  EXPECT_EQ(s.preview_iterations, 12);
+  const json back = cloth_scene_to_json(s);
+  EXPECT_EQ(back["solver"], "preview");
+  EXPECT_EQ(back["preview"]["max_iterations"], 12);
+  EXPECT_FALSE(cloth_scene_from_json(json::parse(R"({"builtin": "sleeve", "solver": "implicit"})"), "s").preview);
+  EXPECT_NE(refusal(json::parse(R"({"builtin": "sleeve", "solver": "explicit"})"))
+                .find("'solver' must be \"implicit\" (the default) or \"preview\""),
+            std::string::npos);
+  EXPECT_NE(refusal(json::parse(R"({"builtin": "sleeve", "preview": {"rounds": 3}})")).find("unknown field 'preview.rounds'"),
+            std::string::npos);
+  EXPECT_NE(refusal(json::parse(R"({"builtin": "sleeve", "preview": {"max_iterations": 0}})"))
+                .find("'preview.max_iterations' must be in [1, 100000]"),
+            std::string::npos);
+}
+
 TEST(ClothScene, RefusesBadInputsNamingTheField) {
   auto with = [](const std::string& key, const json& value) {
     json j = file_scene();

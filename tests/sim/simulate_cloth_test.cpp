@@ -271,6 +271,18 @@ TEST(SimulateCloth, RefusesBadSetups) {
   EXPECT_THROW((void)simulate_cloth(touching, plate(), {}, {}, o), InvalidInput);
   EXPECT_THROW(check_cloth_work(100000, 1000, 10), InvalidInput);
   EXPECT_NO_THROW(check_cloth_work(1000, 60, 2));
+  // The preview's count is vertex-steps x rounds / 30 (no less than the steps).
+  EXPECT_NO_THROW(check_cloth_work(10000, 1000, 2, kMaxPreviewWork, 30));  // 2e7
+  EXPECT_NO_THROW(check_cloth_work(10000, 1000, 2, kMaxPreviewWork, 1));
+  try {
+    check_cloth_work(10000, 1000, 2, kMaxPreviewWork, 90);  // 6e7
+    ADD_FAILURE() << "not refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the preview (garment vertices x frames x substeps x rounds / 30)"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("--preview-iterations"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -301,10 +301,26 @@ ClothScene cloth_scene_from_json(const json& j, const std::string& where, const 
         else
           r.unknown("newton." + k2, "max_iterations, force_tolerance_mn");
       }
+    } else if (key == "solver") {
+      if (value == "preview") {
+        s.preview = true;
+      } else if (value == "implicit") {
+        s.preview = false;
+      } else {
+        r.fail(key, "must be \"implicit\" (the default) or \"preview\"");
+      }
+    } else if (key == "preview") {
+      if (!value.is_object()) r.fail(key, "must be {\"max_iterations\": N}");
+      for (const auto& [k2, v2] : value.items()) {
+        if (k2 == "max_iterations")
+          s.preview_iterations = r.integer(v2, "preview.max_iterations", 1, 100000);
+        else
+          r.unknown("preview." + k2, "max_iterations");
+      }
     } else {
       r.unknown(key,
                 "builtin, arm, leg, garment, body, frames, frame_rate_hz, substeps, friction, gravity_mm_s2, pin, attach, "
-                "attach_within_mm, contact_distance_mm, sliding_distance_mm, newton");
+                "attach_within_mm, contact_distance_mm, sliding_distance_mm, newton, solver, preview");
     }
   }
   if (s.builtin.empty()) {
@@ -376,6 +392,8 @@ json cloth_scene_to_json(const ClothScene& s) {
   j["contact_distance_mm"] = s.contact_distance_mm;
   j["sliding_distance_mm"] = s.sliding_distance_mm;
   j["newton"] = {{"max_iterations", s.max_newton_iterations}, {"force_tolerance_mn", s.force_tolerance_mn}};
+  j["solver"] = s.preview ? "preview" : "implicit";
+  j["preview"] = {{"max_iterations", s.preview_iterations}};
   return j;
 }
 

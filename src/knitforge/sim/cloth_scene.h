@@ -22,7 +22,8 @@
 ///    "friction": 0.5, "gravity_mm_s2": [0, 0, -9810],
 ///    "pin": [vertex, ...], "attach": [vertex, ...], "attach_within_mm": 0,
 ///    "contact_distance_mm": 0.5, "sliding_distance_mm": 1.0,
-///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01}}
+///    "newton": {"max_iterations": 20, "force_tolerance_mn": 0.01},
+///    "solver": "implicit" | "preview", "preview": {"max_iterations": 30}}
 ///
 /// or a built-in scene: {"builtin": "sleeve", "arm": {ArmMotionParams
 /// fields}, ...run fields} (arm_motion.h) or {"builtin": "legging", "leg":
@@ -92,6 +93,10 @@ struct ClothScene {
   double sliding_distance_mm = 1.0;
   int max_newton_iterations = 20;
   double force_tolerance_mn = 1e-2;
+  /// "solver": "preview" runs the fast preview (projective dynamics,
+  /// simulate_cloth.h ClothSolver::Preview) instead of the implicit solver.
+  bool preview = false;
+  int preview_iterations = 30;  ///< "preview": {"max_iterations": N}, its rounds a step at most
 };
 
 /// The scene of a JSON value; `where` names it in messages, relative paths

@@ -52,12 +52,21 @@ void check_options(const ClothOptions& o) {
 
 }  // namespace
 
-void check_cloth_work(int vertices, int frames, int substeps, double limit) {
-  const double work = static_cast<double>(vertices) * frames * substeps;
-  check_work({"the cloth run (garment vertices x frames x substeps)", work, "vertex-steps", limit,
-              // positions, velocities, stress and sliding kept per frame, over the steps of a frame
-              64.0 / std::max(1, substeps),
-              "use fewer frames or substeps or a coarser garment, or raise the limit with --max-work N"});
+void check_cloth_work(int vertices, int frames, int substeps, double limit, int preview_rounds) {
+  const double steps = static_cast<double>(vertices) * frames * substeps;
+  const double scale = std::max(1.0, preview_rounds / 30.0);
+  // positions, velocities, stress and sliding kept per frame, over the steps of a frame
+  const double bytes = 64.0 / std::max(1, substeps) / scale;
+  if (preview_rounds > 0) {
+    check_work({"the preview (garment vertices x frames x substeps x rounds / 30)", steps * scale, "vertex-steps",
+                limit, bytes,
+                "use fewer frames, substeps or --preview-iterations or a coarser garment, or raise the limit with "
+                "--max-work N"});
+  } else {
+    check_work({"the cloth run (garment vertices x frames x substeps)", steps, "vertex-steps", limit, bytes,
+                "use fewer frames or substeps or a coarser garment (or --preview), or raise the limit with "
+                "--max-work N"});
+  }
 }
 
 ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,

@@ -45,6 +45,11 @@ namespace knitforge {
 /// The default limit on vertices x frames x substeps of one run: about
 /// 40 minutes at the rate measured on the 2-core machine (docs/sim.md).
 inline constexpr double kMaxClothWork = 5e6;
+/// The preview's (ClothSolver::Preview) default limit on vertices x frames
+/// x substeps x rounds / 30: about 15 minutes at its measured rate (20 k
+/// vertex-steps of 30 rounds a second, docs/benchmarks.md) and 1.6 GB of
+/// frames at 2 substeps.
+inline constexpr double kMaxPreviewWork = 5e7;
 
 /// How the steps are solved.
 ///  - Implicit: backward Euler by step_simulation() (FEM energies, barrier
@@ -144,7 +149,9 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body, const std
                            const std::vector<int>& attached, const ClothOptions& options,
                            const std::function<void(const ClothFrame&)>& on_frame = {});
 
-/// Refuses a run of vertices x frames x substeps above `limit` (check_work()).
-void check_cloth_work(int vertices, int frames, int substeps, double limit = kMaxClothWork);
+/// Refuses a run of vertices x frames x substeps above `limit`
+/// (check_work()). For the preview, `preview_rounds` > 0 is its rounds a
+/// step at most, and the count is scaled by max(1, rounds / 30).
+void check_cloth_work(int vertices, int frames, int substeps, double limit = kMaxClothWork, int preview_rounds = 0);
 
 }  // namespace knitforge
