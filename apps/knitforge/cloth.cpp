@@ -26,6 +26,7 @@
 #include "knitforge/report/report_html.h"
 #include "knitforge/sim/cloth_scene.h"
 #include "knitforge/sim/contact_candidates.h"
+#include "knitforge/sim/dress_garment.h"
 #include "knitforge/sim/kinematic_body.h"
 #include "knitforge/sim/leg_motion.h"
 #include "knitforge/sim/material_json.h"
@@ -55,6 +56,8 @@ struct LoadedScene {
   // ideal size), and what it was made from.
   std::optional<SimModel> stitch_model;
   nlohmann::json garment_source;
+  // garment.clearance_mm: the garment's start moved out of the body.
+  std::optional<DressResult> dress;
 };
 
 // A stitch mesh (PLY or knitting map, relaxed as `relax` does) or a design
@@ -218,10 +221,21 @@ LoadedScene load_scene(ClothScene& s, double max_work, int preview_rounds) {
   }
   L.pinned = s.pinned;
   L.attached = s.attached;
+  const std::vector<Vec3>* start = &L.garment.vertices;
+  if (s.dress_clearance_mm > 0) {
+    DressOptions d;
+    d.clearance_mm = s.dress_clearance_mm;
+    try {
+      L.dress = dress_garment(KinematicBody(L.body), L.garment.vertices, s.pinned, d);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: garment.clearance_mm: {}", s.where, e.what()));
+    }
+    start = &L.dress->positions;
+  }
   if (s.attach_within_mm > 0) {
     KinematicBody body(L.body);
     Eigen::VectorXd x(3 * static_cast<Eigen::Index>(nv));
-    for (int v = 0; v < nv; ++v) x.segment<3>(3 * v) = L.garment.vertices[v];
+    for (int v = 0; v < nv; ++v) x.segment<3>(3 * v) = (*start)[static_cast<size_t>(v)];
     for (const ContactPair& c : find_contact_candidates(body, x, s.attach_within_mm)) L.attached.push_back(c.vertex);
   }
   std::sort(L.attached.begin(), L.attached.end());
@@ -347,6 +361,13 @@ void add_cloth_command(CLI::App& app, Action& action) {
       SimModelOptions mo;
       mo.materials = scene.materials;
       SimModel model = L.stitch_model ? *L.stitch_model : build_sim_model(L.garment, L.course, scene.face_materials, mo);
+      if (L.dress) {
+        model.rest_positions = L.dress->positions;  // the start; the rest shape stays the model's
+        note(fmt::format("cloth: dressed: {} garment vertices moved out to {} mm from the body ({} were inside or "
+                         "on it, the deepest {:.2f} mm; largest move {:.2f} mm)",
+                         L.dress->moved, scene.dress_clearance_mm, L.dress->inside, L.dress->deepest_mm,
+                         L.dress->largest_move_mm));
+      }
       model.pinned = L.pinned;
       model.pinned.insert(model.pinned.end(), L.attached.begin(), L.attached.end());
       std::sort(model.pinned.begin(), model.pinned.end());
@@ -508,6 +529,14 @@ void add_cloth_command(CLI::App& app, Action& action) {
                              for (const KnitMaterial& k : model.materials) m.push_back(k.name);
                              return m;
                            }()}};
+      if (L.dress) {
+        summary["setup"]["dress"] = {{"clearance_mm", scene.dress_clearance_mm},
+                                     {"moved", L.dress->moved},
+                                     {"inside", L.dress->inside},
+                                     {"deepest_mm", L.dress->deepest_mm},
+                                     {"largest_move_mm", L.dress->largest_move_mm},
+                                     {"passes", L.dress->passes}};
+      }
       summary["result"] = {{"solver", solver_name},
                            {"converged", r.converged},
                            {"frames_not_converged", unconverged},

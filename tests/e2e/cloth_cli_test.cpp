@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "e2e/cli_fixture.h"
+#include "geometry/test_meshes.h"
+#include "knitforge/io/mesh_io.h"
 
 namespace knitforge_e2e {
 namespace {
@@ -377,4 +379,42 @@ TEST_F(ClothCli, BadScenesAreRefusedWithOneLine) {
 }
 
 }  // namespace
+
+// Dressing a body: a design made on a surface (the built-in hemisphere,
+// r 75) worn on a closed body a little larger (a sphere of r 75.5), so its
+// stitch mesh starts just inside the body's facets. As given it is refused;
+// with garment.clearance_mm the start is moved out and the run goes.
+TEST_F(ClothCli, ADesignIsDressedOntoTheBodyItWasMadeOn) {
+  const CliRun d = run("shortrow hemisphere --stitch 7x5.6 --edge 6 --no-report --no-knitout --no-predict -o " +
+                       path("design"));
+  ASSERT_EQ(d.code, 0) << d.err;
+  knitforge::write_mesh(path("ball.obj"), knitforge::test::uv_sphere_mesh(75.5, 48, 24));
+  json scene = {{"garment", {{"design", "design"}}},
+                {"body", {{"mesh", "ball.obj"}}},
+                {"frames", 1},
+                {"substeps", 1},
+                {"newton", {{"max_iterations", 8}}}};
+  write("as_given.json", scene.dump());
+  CliRun r = run("cloth " + path("as_given.json") + " -o " + path("out0"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("free garment vertices start inside the body"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("out0")));
+  scene["garment"]["clearance_mm"] = 1.0;
+  write("dressed.json", scene.dump());
+  r = run("cloth " + path("dressed.json") + " -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("cloth: dressed: "), std::string::npos) << r.err;
+  const json c = json::parse(slurp(path("out/cloth.json")));
+  const json& dress = c["setup"]["dress"];
+  // (nearly all: the stitch mesh lies on the design's own facets, a few of
+  // its vertices more than the clearance outside the ball's)
+  EXPECT_GT(dress["moved"].get<int>(), 0.95 * c["setup"]["garment_vertices"].get<int>());
+  EXPECT_GT(dress["inside"].get<int>(), 0.95 * dress["moved"].get<int>());
+  EXPECT_LE(dress["inside"].get<int>(), dress["moved"].get<int>());
+  EXPECT_GT(dress["deepest_mm"].get<double>(), 0.1);
+  EXPECT_LT(dress["deepest_mm"].get<double>(), 0.6);
+  EXPECT_EQ(c["scene"]["garment"]["clearance_mm"], 1.0);
+  EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
+}
+
 }  // namespace knitforge_e2e

@@ -64,6 +64,32 @@ inline TriMesh tetrahedron() {
   return m;
 }
 
+// A closed UV sphere round the origin, outward oriented: `segments` vertices
+// round each of `rings` - 1 latitude circles, plus the two poles.
+inline TriMesh uv_sphere_mesh(double radius, int segments, int rings) {
+  TriMesh m;
+  const double pi = 3.14159265358979323846;
+  m.vertices.push_back({0, 0, radius});
+  for (int i = 1; i < rings; ++i) {
+    const double th = pi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double ph = 2 * pi * j / segments;
+      m.vertices.push_back({radius * std::sin(th) * std::cos(ph), radius * std::sin(th) * std::sin(ph), radius * std::cos(th)});
+    }
+  }
+  m.vertices.push_back({0, 0, -radius});
+  const int south = static_cast<int>(m.vertices.size()) - 1;
+  auto at = [&](int ring, int j) { return 1 + (ring - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) m.faces.push_back({0, at(1, j), at(1, j + 1)});
+  for (int i = 1; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.faces.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
+  return m;
+}
+
 // Expects a closed (watertight), oriented, edge-manifold mesh: every half-edge
 // has an opposite (build_halfedges() has already rejected non-manifold and
 // inconsistently oriented input). Returns the number of face components.

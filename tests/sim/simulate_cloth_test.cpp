@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/test_meshes.h"
 #include "knitforge/sim/arm_motion.h"
 #include "knitforge/sim/leg_motion.h"
 #include "knitforge/util/errors.h"
@@ -269,6 +270,17 @@ TEST(SimulateCloth, RefusesBadSetups) {
   EXPECT_THROW((void)simulate_cloth(model, plate(), {}, {3}, o), InvalidInput);  // attached but not pinned
   const SimModel touching = build_sim_model(sheet(2, 4.0, 0.0), {Vec3(1, 0, 0)});
   EXPECT_THROW((void)simulate_cloth(touching, plate(), {}, {}, o), InvalidInput);
+  // A garment inside a closed body would stay inside (the barrier keeps
+  // each vertex on its side): refused, naming the deepest vertex.
+  const SimModel inside = build_sim_model(sheet(4, 4.0, 0.0), {Vec3(1, 0, 0)});
+  try {
+    (void)simulate_cloth(inside, test::uv_sphere_mesh(40.0, 24, 12), {}, {}, o);
+    ADD_FAILURE() << "a garment inside the body was simulated";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("25 free garment vertices start inside the body"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("garment.clearance_mm"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(check_cloth_work(100000, 1000, 10), InvalidInput);
   EXPECT_NO_THROW(check_cloth_work(1000, 60, 2));
   // The preview's count is vertex-steps x rounds / 30 (no less than the steps).

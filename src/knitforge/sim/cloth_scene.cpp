@@ -166,10 +166,13 @@ void read_garment(const Reader& r, const json& j, ClothScene& s) {
       }
     } else if (key == "face_materials") {
       s.face_materials = r.indices(value, "garment.face_materials");
+    } else if (key == "clearance_mm") {
+      s.dress_clearance_mm = r.positive(value, "garment.clearance_mm");
+      if (s.dress_clearance_mm > 10) r.fail("garment.clearance_mm", "must be at most 10 mm");
     } else {
       r.unknown("garment." + key,
                 "mesh, stitch_mesh, design, stitch_size, units, course_direction, course_axis, material, materials, "
-                "face_materials");
+                "face_materials, clearance_mm");
     }
   }
   const int sources = int(!s.garment_mesh.empty()) + int(!s.garment_stitch_mesh.empty()) + int(!s.garment_design.empty());
@@ -371,6 +374,7 @@ json cloth_scene_to_json(const ClothScene& s) {
     for (const KnitMaterial& m : s.materials) mats.push_back(material_to_json(m));
     g["materials"] = mats;
     if (!s.face_materials.empty()) g["face_materials"] = s.face_materials;
+    if (s.dress_clearance_mm > 0) g["clearance_mm"] = s.dress_clearance_mm;
     j["garment"] = g;
     if (!s.body_animation.empty()) {
       j["body"] = {{"animation", s.body_animation}, {"units", s.body_units}};

@@ -13,7 +13,8 @@
 ///                "course_direction": [0, 0, 1]            // or
 ///                "course_axis": {"point": [0,0,0], "direction": [1,0,0]},
 ///                "material": "jersey.json" | {...},       // or
-///                "materials": [...], "face_materials": [0, 1, ...]},
+///                "materials": [...], "face_materials": [0, 1, ...],
+///                "clearance_mm": 1},  (dress the body: dress_garment.h)
 ///    "body": {"mesh": "arm.obj"}                          // static, or
 ///    "body": {"frames": ["arm_000.obj", ...], "units": "mm"},  // or
 ///    "body": {"animation": "walk.glb", "mesh_name": "body",   // glTF
@@ -65,6 +66,9 @@ struct ClothScene {
   std::optional<std::pair<Vec3, Vec3>> course_axis;
   std::vector<KnitMaterial> materials{default_single_jersey()};
   std::vector<int> face_materials;  ///< empty (all materials[0]) or one per face
+  /// > 0: the garment's start is moved out of the body to this clearance
+  /// (dress_garment(); a garment designed on the body's surface); 0: as given.
+  double dress_clearance_mm = 0.0;
 
   // The body (file scenes): one static mesh, frames + 1 meshes, or a glTF
   // animation (io/read_gltf_animation.h) sampled at the frame times from

@@ -9,6 +9,7 @@
 
 #include "knitforge/sim/body_sliding.h"
 #include "knitforge/sim/collision_free_step.h"
+#include "knitforge/sim/dress_garment.h"
 #include "knitforge/sim/kinematic_body.h"
 #include "knitforge/sim/membrane_energy.h"
 #include "knitforge/sim/step_simulation.h"
@@ -126,7 +127,20 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
     if (!(d > 0)) {
       throw InvalidInput(
           "cloth: a free garment vertex touches the body at the start (distance 0); start the garment a little "
-          "away from the body (a clearance), or attach or pin that vertex");
+          "away from the body (a clearance: dress_garment(), the scene's garment.clearance_mm), or attach or pin "
+          "that vertex");
+    }
+    // A closed body has an inside; fabric there would stay there (the
+    // barrier keeps every vertex on its side).
+    std::vector<int> held;
+    for (int v = 0; v < n; ++v)
+      if (pinned[static_cast<size_t>(v)]) held.push_back(v);
+    const std::vector<InsidePoint> inside = points_inside_body(body, model.rest_positions, held);
+    if (!inside.empty()) {
+      throw InvalidInput(fmt::format(
+          "cloth: {} free garment vertices start inside the body (vertex {} the deepest, {:.2f} mm); dress the "
+          "garment (dress_garment(), the scene's garment.clearance_mm) or place it around the body",
+          inside.size(), inside.front().vertex, inside.front().depth_mm));
     }
   }
 
