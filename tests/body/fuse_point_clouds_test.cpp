@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "geometry/test_meshes.h"
 #include "knitforge/body/render_depth_image.h"
 #include "knitforge/body/synthetic_depth_scenes.h"
 #include "knitforge/util/errors.h"
@@ -26,29 +27,6 @@ TriMesh tilted_plane(const Vec3& n, const Vec3& p0) {
           {{0, 1, 2}, {0, 2, 3}}};
 }
 
-// A closed latitude-longitude sphere (unit radius, at the origin).
-TriMesh uv_sphere(int rings, int segments) {
-  TriMesh m;
-  m.vertices.emplace_back(0, 0, 1);
-  for (int r = 1; r < rings; ++r) {
-    const double th = M_PI * r / rings;
-    for (int s = 0; s < segments; ++s) {
-      const double ph = 2.0 * M_PI * s / segments;
-      m.vertices.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
-    }
-  }
-  m.vertices.emplace_back(0, 0, -1);
-  const int south = m.num_vertices() - 1;
-  const auto at = [&](int r, int s) { return 1 + (r - 1) * segments + (s % segments); };
-  for (int s = 0; s < segments; ++s) m.faces.push_back({0, at(1, s), at(1, s + 1)});
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      m.faces.push_back({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
-      m.faces.push_back({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
-    }
-  for (int s = 0; s < segments; ++s) m.faces.push_back({south, at(rings - 1, s + 1), at(rings - 1, s)});
-  return m;
-}
 
 }  // namespace
 
@@ -88,7 +66,7 @@ TEST(FusePointClouds, CameraTwosPointsLandOnCameraOnesAndVoxelsBoundTheCount) {
   const DepthRig rig = seed_depth_rig();
   const Vec3 centre(0.0, 0.0, 1000.0);
   const double radius = 250.0;
-  TriMesh sphere = uv_sphere(90, 180);
+  TriMesh sphere = test::uv_sphere_mesh(1.0, 180, 90);
   for (Vec3& v : sphere.vertices) v = centre + radius * v;
   OrientedPoints views[2];
   for (int cam = 0; cam < 2; ++cam) {

@@ -68,7 +68,7 @@ inline TriMesh tetrahedron() {
 // round each of `rings` - 1 latitude circles, plus the two poles.
 inline TriMesh uv_sphere_mesh(double radius, int segments, int rings) {
   TriMesh m;
-  const double pi = 3.14159265358979323846;
+  const double pi = std::numbers::pi;
   m.vertices.push_back({0, 0, radius});
   for (int i = 1; i < rings; ++i) {
     const double th = pi * i / rings;

@@ -167,26 +167,16 @@ TEST(TubeFieldCandidates, ACandidateFlatAtItsRimsIsLevelledIndependentlyOfRoundO
     round[v] = m.vertices[v].x();                               // runs round the tube
     tilted[v] = m.vertices[v].z() + 0.2 * m.vertices[v].x();  // its rims are not its levels
   }
-  EXPECT_THROW(
-      {
-        try {
-          levelled_field(m, round, harmonic);
-        } catch (const InvalidInput& e) {
-          EXPECT_NE(std::string(e.what()).find("same level"), std::string::npos) << e.what();
-          throw;
-        }
-      },
-      InvalidInput);
-  EXPECT_THROW(
-      {
-        try {
-          levelled_field(m, tilted, harmonic);
-        } catch (const InvalidInput& e) {
-          EXPECT_NE(std::string(e.what()).find("not levels of it"), std::string::npos) << e.what();
-          throw;
-        }
-      },
-      InvalidInput);
+  auto refusal = [&](const std::vector<double>& f) {
+    try {
+      levelled_field(m, f, harmonic);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_NE(refusal(round).find("same level"), std::string::npos) << refusal(round);
+  EXPECT_NE(refusal(tilted).find("not levels of it"), std::string::npos) << refusal(tilted);
   EXPECT_THROW(levelled_field(m, std::vector<double>(5, 0.0), harmonic), InvalidInput);
 }
 
