@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/alpha_close.h"  // enclosed_volume()
 #include "knitforge/geometry/pseudo_normals.h"
 #include "knitforge/util/errors.h"
 
@@ -20,11 +21,17 @@ struct Side {
   Vec3 outward = Vec3::Zero();   // unit
 };
 
-Side side_of(const KinematicBody& body, const PseudoNormals& normals, const Vec3& p) {
+// +1, or -1 for a closed body whose faces point inwards (its enclosed volume
+// is negative): then its outside is where its normals do not point.
+double outward_sign(const KinematicBody& body) {
+  return is_closed_mesh(body.mesh()) && enclosed_volume(body.mesh()) < 0.0 ? -1.0 : 1.0;
+}
+
+Side side_of(const KinematicBody& body, const PseudoNormals& normals, double sign, const Vec3& p) {
   Side s;
   s.closest = *body.closest_point_within(p, kFar);
   const Vec3 d = p - s.closest.where.point;
-  const Vec3 n = normals.at(body.mesh(), s.closest.face, s.closest.where);
+  const Vec3 n = sign * normals.at(body.mesh(), s.closest.face, s.closest.where);
   const double dist = std::sqrt(s.closest.distance2);
   const bool outside = d.dot(n) > 0.0;
   s.signed_distance = outside ? dist : -dist;
@@ -32,7 +39,7 @@ Side side_of(const KinematicBody& body, const PseudoNormals& normals, const Vec3
     s.outward = d / dist;
   } else {
     const double len = n.norm();
-    s.outward = len > 0.0 ? Vec3(n / len) : body.face_normal(s.closest.face);
+    s.outward = len > 0.0 ? Vec3(n / len) : Vec3(sign * body.face_normal(s.closest.face));
   }
   return s;
 }
@@ -58,6 +65,7 @@ DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& ga
   if (body.empty()) throw InvalidInput("dressing: the body has no faces");
   const std::vector<char> fixed = skip_mask(skip, garment.size(), "dressing");
   const PseudoNormals normals = pseudo_normals(body.mesh());
+  const double sign = outward_sign(body);
   DressResult r;
   r.positions = garment;
   std::vector<char> moved(garment.size(), 0);
@@ -65,7 +73,7 @@ DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& ga
     bool any = false;
     for (size_t v = 0; v < garment.size(); ++v) {
       if (fixed[v]) continue;
-      const Side s = side_of(body, normals, r.positions[v]);
+      const Side s = side_of(body, normals, sign, r.positions[v]);
       if (s.signed_distance >= o.clearance_mm * (1.0 - 1e-9)) continue;
       if (pass == 0 && s.signed_distance <= 0.0) {
         ++r.inside;
@@ -87,7 +95,7 @@ DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& ga
   for (size_t v = 0; v < garment.size(); ++v) {
     if (!moved[v]) continue;
     ++r.moved;
-    const Side s = side_of(body, normals, r.positions[v]);
+    const Side s = side_of(body, normals, sign, r.positions[v]);
     if (s.signed_distance < 0.5 * o.clearance_mm)
       throw InvalidInput(fmt::format(
           "dressing: garment vertex {} is still {:.2f} mm from the body after {} passes (a crevice narrower than "
@@ -103,9 +111,10 @@ std::vector<InsidePoint> points_inside_body(const KinematicBody& body, const std
   if (body.empty() || !is_closed_mesh(body.mesh())) return out;
   const std::vector<char> fixed = skip_mask(skip, points.size(), "inside test");
   const PseudoNormals normals = pseudo_normals(body.mesh());
+  const double sign = outward_sign(body);
   for (size_t v = 0; v < points.size(); ++v) {
     if (fixed[v]) continue;
-    const Side s = side_of(body, normals, points[v]);
+    const Side s = side_of(body, normals, sign, points[v]);
     if (s.signed_distance < 0.0) out.push_back({static_cast<int>(v), -s.signed_distance});
   }
   std::stable_sort(out.begin(), out.end(), [](const InsidePoint& a, const InsidePoint& b) { return a.depth_mm > b.depth_mm; });

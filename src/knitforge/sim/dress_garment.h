@@ -10,7 +10,9 @@
 /// there: (p - c) / |p - c| for a vertex outside, the body's angle-weighted
 /// pseudo-normal at c (geometry/pseudo_normals.h) for one inside or on it.
 /// Outward is where the body's face normals point (a body of `body make`,
-/// a scan: its outside; a closed body's inside is then exact). A vertex
+/// a scan: its outside; a closed body's inside is then exact), or, for a
+/// closed body whose faces point inwards (negative enclosed volume), where
+/// they do not. A vertex
 /// moved out in a concave place (an armpit, the crook of an elbow) may come
 /// near another part: up to kDressPasses passes, after which every vertex
 /// moved must lie outside and at least half the clearance from the body.
