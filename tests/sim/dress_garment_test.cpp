@@ -101,6 +101,10 @@ TEST(DressGarment, PinsStayAndBadInputIsRefusedNamingIt) {
   o.clearance_mm = 0;
   EXPECT_THROW(dress_garment(body, cap_points(59.0), {}, o), InvalidInput);
   EXPECT_THROW(dress_garment(body, cap_points(59.0), {1000}), InvalidInput);
+  std::vector<Vec3> broken = cap_points(59.0);
+  broken[3].x() = std::nan("");
+  EXPECT_THROW(dress_garment(body, broken, {}), InvalidInput);
+  EXPECT_THROW(points_inside_body(body, broken), InvalidInput);
 }
 
 TEST(DressGarment, AnOpenBodyHasNoInside) {

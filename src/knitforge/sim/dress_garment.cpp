@@ -44,11 +44,15 @@ Side side_of(const KinematicBody& body, const PseudoNormals& normals, double sig
   return s;
 }
 
-std::vector<char> skip_mask(const std::vector<int>& skip, size_t n, const char* who) {
+// The vertices not to touch, after checking every point is finite.
+std::vector<char> skip_mask(const std::vector<int>& skip, const std::vector<Vec3>& points, const char* who) {
+  const size_t n = points.size();
+  for (size_t v = 0; v < n; ++v)
+    if (!points[v].allFinite()) throw InvalidInput(fmt::format("{}: vertex {} is not finite", who, v));
   std::vector<char> mask(n, 0);
   for (int v : skip) {
     if (v < 0 || static_cast<size_t>(v) >= n)
-      throw InvalidInput(fmt::format("{}: vertex {} out of range (0..{})", who, v, n - 1));
+      throw InvalidInput(fmt::format("{}: vertex {} out of range ({} vertices)", who, v, n));
     mask[static_cast<size_t>(v)] = 1;
   }
   return mask;
@@ -63,7 +67,7 @@ DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& ga
   if (!(o.max_depth_mm > 0.0))
     throw InvalidInput(fmt::format("dressing: the largest depth must be positive, got {} mm", o.max_depth_mm));
   if (body.empty()) throw InvalidInput("dressing: the body has no faces");
-  const std::vector<char> fixed = skip_mask(skip, garment.size(), "dressing");
+  const std::vector<char> fixed = skip_mask(skip, garment, "dressing");
   const PseudoNormals normals = pseudo_normals(body.mesh());
   const double sign = outward_sign(body);
   DressResult r;
@@ -109,7 +113,7 @@ std::vector<InsidePoint> points_inside_body(const KinematicBody& body, const std
                                             const std::vector<int>& skip) {
   std::vector<InsidePoint> out;
   if (body.empty() || !is_closed_mesh(body.mesh())) return out;
-  const std::vector<char> fixed = skip_mask(skip, points.size(), "inside test");
+  const std::vector<char> fixed = skip_mask(skip, points, "inside test");
   const PseudoNormals normals = pseudo_normals(body.mesh());
   const double sign = outward_sign(body);
   for (size_t v = 0; v < points.size(); ++v) {

@@ -48,8 +48,8 @@ struct DressResult {
 
 /// Moves `garment`'s vertices out of `body` (see the file comment); the
 /// vertices in `skip` (pins: held where they are) stay.
-/// \throw InvalidInput for options out of range, an empty body, an index
-///        of `skip` out of range, a vertex deeper than max_depth_mm (naming
+/// \throw InvalidInput for options out of range, an empty body, a
+///        non-finite vertex, an index of `skip` out of range, a vertex deeper than max_depth_mm (naming
 ///        it and its depth), or a vertex still within half the clearance
 ///        after the passes (naming it).
 DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& garment, const std::vector<int>& skip,
@@ -59,6 +59,8 @@ DressResult dress_garment(const KinematicBody& body, const std::vector<Vec3>& ga
 /// pseudo-normal points away from them), with their depth (mm), deepest
 /// first; for a closed body (is_closed_mesh()) only, else empty: an open
 /// body (a plate) has no inside. `skip`: vertices not tested.
+/// \throw InvalidInput for a non-finite point or an index of `skip` out of
+///        range.
 struct InsidePoint {
   int vertex = 0;
   double depth_mm = 0.0;
