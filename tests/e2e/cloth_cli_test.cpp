@@ -411,8 +411,11 @@ TEST_F(ClothCli, ADesignIsDressedOntoTheBodyItWasMadeOn) {
   EXPECT_GT(dress["moved"].get<int>(), 0.95 * c["setup"]["garment_vertices"].get<int>());
   EXPECT_GT(dress["inside"].get<int>(), 0.95 * dress["moved"].get<int>());
   EXPECT_LE(dress["inside"].get<int>(), dress["moved"].get<int>());
-  EXPECT_GT(dress["deepest_mm"].get<double>(), 0.1);
-  EXPECT_LT(dress["deepest_mm"].get<double>(), 0.6);
+  // 0.5 mm (the ball's extra radius) plus the ball's and the design's
+  // facets (measured: 0.597 mm, largest move 1.597 mm)
+  EXPECT_GT(dress["deepest_mm"].get<double>(), 0.3);
+  EXPECT_LT(dress["deepest_mm"].get<double>(), 0.9);
+  EXPECT_LT(dress["largest_move_mm"].get<double>(), 1.9);
   EXPECT_EQ(c["scene"]["garment"]["clearance_mm"], 1.0);
   EXPECT_GT(c["result"]["min_distance_mm"].get<double>(), 0.0);
 }
