@@ -222,21 +222,22 @@ LoadedScene load_scene(ClothScene& s, double max_work, int preview_rounds) {
   L.pinned = s.pinned;
   L.attached = s.attached;
   const std::vector<Vec3>* start = &L.garment.vertices;
+  std::optional<KinematicBody> body;  // the body at the start, for dressing and attaching
+  if (s.dress_clearance_mm > 0 || s.attach_within_mm > 0) body.emplace(L.body);
   if (s.dress_clearance_mm > 0) {
     DressOptions d;
     d.clearance_mm = s.dress_clearance_mm;
     try {
-      L.dress = dress_garment(KinematicBody(L.body), L.garment.vertices, s.pinned, d);
+      L.dress = dress_garment(*body, L.garment.vertices, s.pinned, d);
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("{}: garment.clearance_mm: {}", s.where, e.what()));
     }
     start = &L.dress->positions;
   }
   if (s.attach_within_mm > 0) {
-    KinematicBody body(L.body);
     Eigen::VectorXd x(3 * static_cast<Eigen::Index>(nv));
     for (int v = 0; v < nv; ++v) x.segment<3>(3 * v) = (*start)[static_cast<size_t>(v)];
-    for (const ContactPair& c : find_contact_candidates(body, x, s.attach_within_mm)) L.attached.push_back(c.vertex);
+    for (const ContactPair& c : find_contact_candidates(*body, x, s.attach_within_mm)) L.attached.push_back(c.vertex);
   }
   std::sort(L.attached.begin(), L.attached.end());
   L.attached.erase(std::unique(L.attached.begin(), L.attached.end()), L.attached.end());

@@ -6,16 +6,12 @@
 
 #include <fmt/core.h>
 
+#include "knitforge/geometry/edge_key.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
 
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 bool strict_sign_change(double fa, double fb) { return (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0); }
 
@@ -74,7 +70,7 @@ ClippedMesh clip_mesh_by_field(const TriMesh& mesh, const std::vector<double>& f
   for (int v = 0; v < V; ++v) origin[static_cast<size_t>(v)] = v;
   std::unordered_map<std::uint64_t, int> crossing;
   auto cross = [&](int a, int b) {
-    const auto [it, fresh] = crossing.try_emplace(edge_key(a, b), static_cast<int>(verts.size()));
+    const auto [it, fresh] = crossing.try_emplace(undirected_edge_key(a, b), static_cast<int>(verts.size()));
     if (fresh) {
       const double fa = val[static_cast<size_t>(a)], fb = val[static_cast<size_t>(b)];
       const double s = fa / (fa - fb);

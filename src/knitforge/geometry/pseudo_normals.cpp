@@ -5,14 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "knitforge/geometry/edge_key.h"
 #include "knitforge/util/errors.h"
 
 namespace knitforge {
-
-std::uint64_t PseudoNormals::edge_key(int a, int b) {
-  const auto lo = static_cast<std::uint32_t>(std::min(a, b)), hi = static_cast<std::uint32_t>(std::max(a, b));
-  return (static_cast<std::uint64_t>(lo) << 32) | hi;
-}
 
 Vec3 PseudoNormals::at(const TriMesh& mesh, int f, const TrianglePoint& where) const {
   const auto& t = mesh.faces[static_cast<size_t>(f)];
@@ -20,7 +16,7 @@ Vec3 PseudoNormals::at(const TriMesh& mesh, int f, const TrianglePoint& where) c
     case TrianglePoint::Region::Face:
       return face[static_cast<size_t>(f)];
     case TrianglePoint::Region::Edge: {
-      const auto it = edge.find(edge_key(t[where.feature], t[(where.feature + 1) % 3]));
+      const auto it = edge.find(undirected_edge_key(t[where.feature], t[(where.feature + 1) % 3]));
       return it == edge.end() ? face[static_cast<size_t>(f)] : it->second;
     }
     case TrianglePoint::Region::Vertex:
@@ -51,7 +47,7 @@ PseudoNormals pseudo_normals(const TriMesh& mesh) {
       const Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
       const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
       out.vertex[static_cast<size_t>(t[k])] += angle * nrm;
-      out.edge.try_emplace(PseudoNormals::edge_key(t[k], t[(k + 1) % 3]), Vec3::Zero()).first->second += nrm;
+      out.edge.try_emplace(undirected_edge_key(t[k], t[(k + 1) % 3]), Vec3::Zero()).first->second += nrm;
     }
   }
   return out;
@@ -61,7 +57,7 @@ bool is_closed_mesh(const TriMesh& mesh) {
   std::unordered_map<std::uint64_t, int> count;
   count.reserve(3 * mesh.faces.size() / 2 + 1);
   for (const auto& t : mesh.faces)
-    for (int k = 0; k < 3; ++k) ++count[PseudoNormals::edge_key(t[k], t[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) ++count[undirected_edge_key(t[k], t[(k + 1) % 3])];
   if (count.empty()) return false;
   return std::all_of(count.begin(), count.end(), [](const auto& e) { return e.second == 2; });
 }

@@ -27,10 +27,7 @@ namespace knitforge {
 struct PseudoNormals {
   std::vector<Vec3> face;    ///< unit normal per face (zero when degenerate)
   std::vector<Vec3> vertex;  ///< angle-weighted sum per vertex
-  std::unordered_map<std::uint64_t, Vec3> edge;  ///< per undirected edge (key: edge_key())
-
-  /// The key of the undirected edge {a, b}.
-  static std::uint64_t edge_key(int a, int b);
+  std::unordered_map<std::uint64_t, Vec3> edge;  ///< per undirected edge (key: undirected_edge_key(), edge_key.h)
   /// The pseudo-normal where `where` lies on face `face` of `mesh`
   /// (its region and feature, closest_triangle_point()).
   Vec3 at(const TriMesh& mesh, int face, const TrianglePoint& where) const;

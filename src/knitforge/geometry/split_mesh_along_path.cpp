@@ -14,6 +14,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <fmt/core.h>
 
+#include "knitforge/geometry/edge_key.h"
 #include "knitforge/geometry/halfedges.h"
 #include "knitforge/util/errors.h"
 
@@ -28,12 +29,6 @@ using Fb = CGAL::Triangulation_face_base_with_info_2<int, Kernel, Fb0>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
 using Point2 = Kernel::Point_2;
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
 
 enum class Kind { Vertex, Edge, Face };
 
@@ -311,11 +306,11 @@ void Splitter::triangulate_constrained(int f, const std::vector<int>& polygon,
   try {
     for (int i = 0; i < nb; ++i) {
       const int a = polygon[i], b = polygon[(i + 1) % nb];
-      boundary[edge_key(a, b)] = 1;
+      boundary[undirected_edge_key(a, b)] = 1;
       cdt.insert_constraint(handle.at(a), handle.at(b));
     }
     for (const auto& [a, b] : chords) {
-      if (boundary.count(edge_key(a, b))) continue;
+      if (boundary.count(undirected_edge_key(a, b))) continue;
       cdt.insert_constraint(handle.at(a), handle.at(b));
     }
   } catch (const Cdt::Intersection_of_constraints_exception&) {
@@ -341,7 +336,7 @@ void Splitter::triangulate_constrained(int f, const std::vector<int>& polygon,
       if (nb_face->info() != 0) continue;
       const auto va = fh->vertex(Cdt::cw(i)), vb = fh->vertex(Cdt::ccw(i));
       if (!cdt.is_infinite(va) && !cdt.is_infinite(vb) &&
-          boundary.count(edge_key(va->info() - 1, vb->info() - 1))) {
+          boundary.count(undirected_edge_key(va->info() - 1, vb->info() - 1))) {
         continue;
       }
       nb_face->info() = 1;

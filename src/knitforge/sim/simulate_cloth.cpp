@@ -132,10 +132,7 @@ ClothResult simulate_cloth(const SimModel& model, const TriMesh& body_mesh,
     }
     // A closed body has an inside; fabric there would stay there (the
     // barrier keeps every vertex on its side).
-    std::vector<int> held;
-    for (int v = 0; v < n; ++v)
-      if (pinned[static_cast<size_t>(v)]) held.push_back(v);
-    const std::vector<InsidePoint> inside = points_inside_body(body, model.rest_positions, held);
+    const std::vector<InsidePoint> inside = points_inside_body(body, model.rest_positions, model.pinned);
     if (!inside.empty()) {
       throw InvalidInput(fmt::format(
           "cloth: {} free garment vertices start inside the body (vertex {} the deepest, {:.2f} mm); dress the "
